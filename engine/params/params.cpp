@@ -1,0 +1,143 @@
+#include "engine/params/params.h"
+
+#include <nlohmann/json.hpp>
+
+#include "engine/util/error.h"
+#include "engine/util/files.h"
+
+namespace prep {
+namespace {
+
+using nlohmann::json;
+
+// Each sub-struct lists its fields once; the same list drives JSON output, strict JSON input and the
+// policy hash, so a field added here is saved, loaded and (where it matters) hashed without more code.
+template <class F> void fields(ContactParams& p, F&& f) {
+  f("height_on", p.height_on); f("height_off", p.height_off);
+  f("speed_on", p.speed_on); f("speed_off", p.speed_off); f("foot_width", p.foot_width);
+}
+template <class F> void fields(GraphParams& p, F&& f) {
+  f("window_s", p.window_s); f("threshold", p.threshold); f("blend_s", p.blend_s);
+}
+template <class F> void fields(ReferenceParams& p, F&& f) { f("legs_threshold", p.legs_threshold); }
+template <class F> void fields(BlendParams& p, F&& f) {
+  f("C_upper", p.C_upper); f("C_lower", p.C_lower); f("c_scale", p.c_scale);
+  f("C_override", p.C_override); f("c_override", p.c_override); f("method", p.method);
+}
+template <class F> void fields(IkParams& p, F&& f) {
+  f("knee_soft_start", p.knee_soft_start); f("enabled", p.enabled);
+}
+template <class F> void fields(BalanceParams& p, F&& f) {
+  f("w_b", p.w_b); f("w_s", p.w_s); f("w_m", p.w_m); f("max_steps", p.max_steps);
+  f("alpha_threshold", p.alpha_threshold); f("step_size", p.step_size); f("tolerance", p.tolerance);
+  f("enabled", p.enabled);
+}
+template <class F> void fields(QuantizationParams& p, F&& f) {
+  f("d_step", p.d_step); f("d_g_bins", p.d_g_bins); f("d_i_bins", p.d_i_bins);
+  f("theta_g_step_deg", p.theta_g_step_deg); f("theta_g_bins", p.theta_g_bins);
+  f("theta_i_step_deg", p.theta_i_step_deg); f("theta_i_bins", p.theta_i_bins);
+  f("alpha_step", p.alpha_step); f("alpha_levels", p.alpha_levels);
+}
+template <class F> void fields(RewardParams& p, F&& f) {
+  f("theta_norm_deg", p.theta_norm_deg); f("d_norm", p.d_norm); f("C_alpha", p.C_alpha);
+  f("w_theta", p.w_theta); f("w_d", p.w_d); f("w_alpha", p.w_alpha);
+  f("goal_radius", p.goal_radius); f("source_radius", p.source_radius);
+}
+template <class F> void fields(SarsaParams& p, F&& f) {
+  f("learning_rate", p.learning_rate); f("discount", p.discount); f("epsilon", p.epsilon);
+  f("convergence_fraction", p.convergence_fraction); f("convergence_episodes", p.convergence_episodes);
+  f("update_tolerance", p.update_tolerance); f("seed", p.seed); f("max_steps", p.max_steps);
+  f("threads", p.threads); f("max_episode_steps", p.max_episode_steps);
+}
+template <class F> void fields(RuntimeParams& p, F&& f) {
+  f("alpha_sigma_s", p.alpha_sigma_s); f("fixed_dt", p.fixed_dt);
+}
+template <class F> void sections(Params& p, F&& f) {
+  f("contacts", p.contacts); f("graph", p.graph); f("reference", p.reference); f("blend", p.blend);
+  f("ik", p.ik); f("balance", p.balance); f("quantization", p.quantization); f("reward", p.reward);
+  f("sarsa", p.sarsa); f("runtime", p.runtime);
+}
+
+template <class S> json section_to_json(S& s) {
+  json j = json::object();
+  fields(s, [&](const char* name, auto& value) { j[name] = value; });
+  return j;
+}
+
+template <class S> void section_from_json(const json& j, S& s, const std::string& file, const std::string& where) {
+  if (!j.is_object()) throw InputError(file, "'" + where + "' must be an object");
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    bool known = false;
+    fields(s, [&](const char* name, auto& value) {
+      if (it.key() != name) return;
+      known = true;
+      try {
+        it.value().get_to(value);
+      } catch (const json::exception&) {
+        throw InputError(file, "'" + where + "." + it.key() + "' has the wrong type (" +
+                                   std::string(it.value().type_name()) + ")");
+      }
+    });
+    if (!known) throw InputError(file, "unknown field '" + where + "." + it.key() + "'");
+  }
+}
+
+}  // namespace
+
+std::string params_to_json(const Params& params) {
+  Params copy = params;
+  json j = json::object();
+  sections(copy, [&](const char* name, auto& section) { j[name] = section_to_json(section); });
+  return j.dump(2) + "\n";
+}
+
+Params params_from_json(const std::string& text, const std::string& source_name) {
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const json::parse_error& e) {
+    throw InputError(source_name, "invalid JSON at byte " + std::to_string(e.byte) + ": " + e.what());
+  }
+  if (!j.is_object()) throw InputError(source_name, "params must be a JSON object");
+  Params p;
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    bool known = false;
+    sections(p, [&](const char* name, auto& section) {
+      if (it.key() != name) return;
+      known = true;
+      section_from_json(it.value(), section, source_name, name);
+    });
+    if (!known) throw InputError(source_name, "unknown section '" + it.key() + "'");
+  }
+  return p;
+}
+
+Params load_params(const std::string& path) { return params_from_json(read_file(path), path); }
+
+void save_params(const Params& params, const std::string& path) {
+  write_file_atomic(path, params_to_json(params));
+}
+
+std::uint64_t policy_params_hash(const Params& params) {
+  // FNV-1a over the canonical JSON of the sections a policy depends on. The blend's lower-body curve
+  // matters because it changes the stride (Eq. 3-4) and so the action table the policy was trained on.
+  Params copy = params;
+  json j;
+  j["quantization"] = section_to_json(copy.quantization);
+  j["reward"] = section_to_json(copy.reward);
+  json sarsa = section_to_json(copy.sarsa);
+  sarsa.erase("threads");    // the thread count changes the run, not what the policy means
+  sarsa.erase("max_steps");
+  j["sarsa"] = sarsa;
+  j["C_lower"] = copy.blend.C_lower;
+  j["method"] = copy.blend.method;
+  const std::string s = j.dump();
+  std::uint64_t h = 1469598103934665603ull;
+  for (unsigned char c : s) {
+    h ^= c;
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+}  // namespace prep

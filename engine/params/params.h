@@ -1,0 +1,135 @@
+// One source of truth for every tunable of prep, with the paper's defaults.
+//
+// Every stage of the pipeline reads its constants from here; the demo's panels edit a Params live,
+// the tools load it from JSON (`--params FILE`). Sub-structs follow the paper's sections. Where the paper
+// is vague or inconsistent, the default chosen is explained beside the field.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+
+namespace prep {
+
+// Sec. 4 data: per-frame foot contacts (heel and toe) from heights and speeds, with hysteresis.
+struct ContactParams {
+  float height_on = 0.06f;   // m above the floor: a point below this may enter contact
+  float height_off = 0.09f;  // m: a point in contact leaves it only above this (hysteresis)
+  float speed_on = 0.35f;    // m/s horizontal+vertical speed under which a point may enter contact
+  float speed_off = 0.60f;   // m/s: a point in contact leaves it only above this
+  float foot_width = 0.09f;  // m: lateral width of a footprint in the support polygon
+};
+
+// Sec. 4.1: hierarchical motion graph.
+struct GraphParams {
+  float window_s = 0.2f;          // s: window of frames over which the point-cloud distance is taken
+  float threshold = 0.35f;        // distance (m, RMS over points) below which a local minimum is an edge
+  float blend_s = 0.25f;          // s: duration of the transition blend across an edge
+};
+
+// Sec. 4.2: reference posture T_p.
+struct ReferenceParams {
+  float legs_threshold = 0.02f;   // m^2: sum of squared leg-joint position differences to T_0
+};
+
+// Sec. 5.1: movement style synthesis, Eq. 1-2.
+struct BlendParams {
+  // Eq. 1: w_i = c_i * sqrt(1 - (1 - alpha)^C_i). With Eq. 1 as printed a larger C_i rises faster, so the
+  // paper's printed values (legs 1.0, upper body 0.5) would make the legs lead, the opposite of what
+  // Sec. 5.1 and Fig. 6 describe. We keep the described behaviour: the upper body gets the fast curve.
+  float C_upper = 1.0f;           // arms, torso, neck, head: adapt first
+  float C_lower = 0.5f;           // root and legs: adapt over a longer period (also slows the stride, Eq. 3-4)
+  float c_scale = 1.0f;           // c_i (undefined in the paper): a per-joint scale, 1 so that alpha = 1 reaches T_p
+  std::map<std::string, float> C_override;  // per-joint C_i by joint name
+  std::map<std::string, float> c_override;  // per-joint c_i by joint name
+  std::string method = "ours";    // "ours" (per-joint curves) or "linear" (one weight alpha for all joints)
+};
+
+// Sec. 5.2: foot inverse kinematics.
+struct IkParams {
+  float knee_soft_start = 0.97f;  // fraction of full leg length where the reach starts being softened
+  bool enabled = true;
+};
+
+// Sec. 5.3: balance optimizer, Eq. 6-10.
+struct BalanceParams {
+  float w_b = 2.0f;               // Eq. 10 balance weight (the paper's "w_d" is a typo for w_b)
+  float w_s = 1.0f;               // Eq. 10 postural style weight
+  float w_m = 0.25f;              // Eq. 10 smoothness weight
+  int max_steps = 10;             // gradient-descent steps at most
+  float alpha_threshold = 0.3f;   // no optimization below this level of preparation
+  float step_size = 0.5f;         // initial gradient step (radians per unit gradient)
+  float tolerance = 1e-5f;        // stop when the cost improves by less than this (a local optimum)
+  bool enabled = true;
+};
+
+// Sec. 6.1, Table I: quantization of the state s = {alpha, m, d_g, theta_g, d_i, theta_i}.
+struct QuantizationParams {
+  float d_step = 0.4f;            // m, for d_g and d_i
+  int d_g_bins = 5;
+  int d_i_bins = 5;
+  float theta_g_step_deg = 45.0f;
+  int theta_g_bins = 8;
+  float theta_i_step_deg = 90.0f;
+  int theta_i_bins = 4;
+  float alpha_step = 0.2f;
+  int alpha_levels = 6;           // 0, 0.2, ..., 1.0: 6 levels give the paper's 19,200 states (Table I prints 5)
+};
+
+// Sec. 6.2: reward, Eq. 14-17.
+struct RewardParams {
+  float theta_norm_deg = 180.0f;
+  float d_norm = 1.0f;            // m
+  float C_alpha = 2.0f;
+  float w_theta = 0.1f;
+  float w_d = 0.3f;
+  float w_alpha = 0.6f;
+  float goal_radius = 0.4f;       // m: the goal counts as reached within this distance
+  float source_radius = 0.4f;     // m: alpha is forced to 1 within this distance of the source (Eq. 13)
+};
+
+// Sec. 6.3-6.4: SARSA, Eq. 18-19.
+struct SarsaParams {
+  float learning_rate = 0.7f;     // lambda in Eq. 19 (the paper's "rate of learning")
+  float discount = 0.3f;          // gamma in Eq. 18-19
+  float epsilon = 0.1f;           // epsilon-greedy
+  float convergence_fraction = 0.02f;  // stop when Q updates per episode < this fraction of the states ...
+  int convergence_episodes = 1000;     // ... in this many consecutive episodes
+  float update_tolerance = 1e-4f; // a Q change smaller than this does not count as an update
+  std::uint64_t seed = 1;
+  std::int64_t max_steps = 200000000;
+  int threads = 2;
+  int max_episode_steps = 200;
+};
+
+// Sec. 6 at run time and the simulation loop.
+struct RuntimeParams {
+  float alpha_sigma_s = 0.25f;    // s: sigma of the Gaussian filter over alpha
+  float fixed_dt = 1.0f / 60.0f;  // s: engine tick
+};
+
+struct Params {
+  ContactParams contacts;
+  GraphParams graph;
+  ReferenceParams reference;
+  BlendParams blend;
+  IkParams ik;
+  BalanceParams balance;
+  QuantizationParams quantization;
+  RewardParams reward;
+  SarsaParams sarsa;
+  RuntimeParams runtime;
+};
+
+// JSON in/out. Missing fields keep their defaults; unknown fields and wrong types are errors that name
+// the file and the field. Saving is atomic (temporary file + rename).
+Params load_params(const std::string& path);
+void save_params(const Params& params, const std::string& path);
+std::string params_to_json(const Params& params);
+Params params_from_json(const std::string& text, const std::string& source_name);
+
+// A stable hash of the fields a trained policy depends on (quantization, reward, SARSA constants and the
+// lower-body blend curve), written into policy files so that a mismatched policy is refused.
+std::uint64_t policy_params_hash(const Params& params);
+
+}  // namespace prep

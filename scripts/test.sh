@@ -1,0 +1,14 @@
+#!/usr/bin/env bash
+# The README's test command: set up, build, run every test; then the same under AddressSanitizer and
+# UndefinedBehaviorSanitizer in a second build directory.
+set -euo pipefail
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+jobs="$(nproc 2>/dev/null || echo 2)"
+
+"$here/scripts/setup.sh" "$here/build"
+(cd "$here/build" && ctest --output-on-failure -j "$jobs")
+
+echo "prep: tests again under AddressSanitizer + UndefinedBehaviorSanitizer"
+"$here/scripts/setup.sh" "$here/build-asan" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPREP_SANITIZE=ON -DPREP_BUILD_BENCH=OFF
+export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+(cd "$here/build-asan" && ctest --output-on-failure -j "$jobs" -LE slow)
