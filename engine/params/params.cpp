@@ -25,12 +25,12 @@ template <class F> void fields(BlendParams& p, F&& f) {
   f("C_override", p.C_override); f("c_override", p.c_override); f("method", p.method);
 }
 template <class F> void fields(IkParams& p, F&& f) {
-  f("knee_soft_start", p.knee_soft_start); f("enabled", p.enabled);
+  f("knee_soft_start", p.knee_soft_start); f("release_s", p.release_s); f("enabled", p.enabled);
 }
 template <class F> void fields(BalanceParams& p, F&& f) {
   f("w_b", p.w_b); f("w_s", p.w_s); f("w_m", p.w_m); f("max_steps", p.max_steps);
   f("alpha_threshold", p.alpha_threshold); f("step_size", p.step_size); f("tolerance", p.tolerance);
-  f("enabled", p.enabled);
+  f("max_halvings", p.max_halvings); f("norm_smoothing", p.norm_smoothing); f("enabled", p.enabled);
 }
 template <class F> void fields(QuantizationParams& p, F&& f) {
   f("d_step", p.d_step); f("d_g_bins", p.d_g_bins); f("d_i_bins", p.d_i_bins);

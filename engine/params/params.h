@@ -48,6 +48,7 @@ struct BlendParams {
 // Sec. 5.2: foot inverse kinematics.
 struct IkParams {
   float knee_soft_start = 0.97f;  // fraction of full leg length where the reach starts being softened
+  float release_s = 0.2f;         // s: after lift-off a foot's IK correction fades out over this time
   bool enabled = true;
 };
 
@@ -60,6 +61,8 @@ struct BalanceParams {
   float alpha_threshold = 0.3f;   // no optimization below this level of preparation
   float step_size = 0.5f;         // initial gradient step (radians per unit gradient)
   float tolerance = 1e-5f;        // stop when the cost improves by less than this (a local optimum)
+  int max_halvings = 4;           // backtracking line search: halve the step at most this often per step
+  float norm_smoothing = 1e-3f;   // m: |x| is taken as sqrt(|x|^2 + e^2) - e so the cost is differentiable at 0
   bool enabled = true;
 };
 
