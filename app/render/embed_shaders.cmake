@@ -1,0 +1,25 @@
+# Build step: writes every file of SHADER_DIR (shaders/*.vert, *.frag, *.glsl) into OUT as C++ raw
+# string literals, so prep-demo carries its shaders and runs from any directory.
+#   cmake -DSHADER_DIR=... -DOUT=... -P embed_shaders.cmake
+file(GLOB files RELATIVE ${SHADER_DIR} ${SHADER_DIR}/*.vert ${SHADER_DIR}/*.frag ${SHADER_DIR}/*.glsl)
+list(SORT files)
+set(body "// Generated at build time from shaders/ by app/render/embed_shaders.cmake: do not edit.\n")
+string(APPEND body "#include \"app/render/shader.h\"\n\nnamespace prep::render {\n\n")
+string(APPEND body "const std::map<std::string, std::string>& embedded_shader_sources() {\n")
+string(APPEND body "  static const std::map<std::string, std::string> sources = {\n")
+foreach(f ${files})
+  file(READ ${SHADER_DIR}/${f} text)
+  string(FIND "${text}" ")prep_glsl\"" clash)
+  if(NOT clash EQUAL -1)
+    message(FATAL_ERROR "${f} contains the raw-string delimiter )prep_glsl\"")
+  endif()
+  string(APPEND body "      {\"${f}\", R\"prep_glsl(${text})prep_glsl\"},\n")
+endforeach()
+string(APPEND body "  };\n  return sources;\n}\n\n}  // namespace prep::render\n")
+# Only touch OUT when it changes, so an unchanged shader set does not rebuild anything.
+if(EXISTS ${OUT})
+  file(READ ${OUT} old)
+endif()
+if(NOT "${old}" STREQUAL "${body}")
+  file(WRITE ${OUT} "${body}")
+endif()

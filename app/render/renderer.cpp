@@ -1,0 +1,433 @@
+#include "app/render/renderer.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstddef>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <stdexcept>
+#include <string>
+
+#include "app/render/palette.h"
+#include "app/render/shader.h"
+
+namespace prep::render {
+
+using namespace prep::gl;
+
+namespace {
+
+constexpr float kPi = 3.14159265358979f;
+
+std::string lowercase(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  return s;
+}
+
+bool has(const std::string& s, const char* word) { return s.find(word) != std::string::npos; }
+
+// Capsule radius (m) of the bone that starts at a joint with this (lowercase) name, for an adult body;
+// 0 means "not drawn" (eyes). Order matters: "forearm" before "arm", "upleg" before "leg".
+float bone_radius(const std::string& n) {
+  if (has(n, "eye") || has(n, "jaw")) return 0.0f;
+  if (has(n, "thumb") || has(n, "index") || has(n, "mid") || has(n, "ring") || has(n, "pinky") || has(n, "finger"))
+    return 0.011f;
+  if (has(n, "hand") || has(n, "wrist")) return 0.032f;
+  if (has(n, "forearm") || has(n, "elbow") || has(n, "lowerarm")) return 0.040f;
+  if (has(n, "collar") || has(n, "clavicle")) return 0.045f;
+  if (has(n, "shldr") || has(n, "shoulder") || has(n, "arm")) return 0.048f;
+  if (has(n, "toe")) return 0.030f;
+  if (has(n, "foot") || has(n, "ankle")) return 0.042f;
+  if (has(n, "thigh") || has(n, "upleg") || has(n, "upperleg") || has(n, "buttock")) return 0.068f;
+  if (has(n, "shin") || has(n, "knee") || has(n, "calf") || has(n, "lowerleg") || has(n, "leg")) return 0.052f;
+  if (has(n, "neck")) return 0.050f;
+  if (has(n, "chest") || has(n, "spine") || has(n, "abdomen") || has(n, "torso") || has(n, "back")) return 0.100f;
+  if (has(n, "hip") || has(n, "pelvis") || has(n, "root")) return 0.085f;
+  return 0.045f;
+}
+
+constexpr float kHeadRadius = 0.10f;
+constexpr float kHeadCentreAbove = 0.11f;  // m from the head joint (base of the skull) to the head's centre
+
+// A unit-radius capsule of zero length: rows of vertices from the bottom pole of end A to the top pole of
+// end B; the band between A's equator and B's equator is the cylinder.
+void capsule_mesh(int slices, int half_rings, std::vector<float>& vertices, std::vector<unsigned>& indices) {
+  const int rows = 2 * (half_rings + 1);
+  for (int row = 0; row < rows; ++row) {
+    const bool end_b = row > half_rings;
+    const int k = end_b ? row - half_rings - 1 : row;
+    const float latitude = end_b ? 0.5f * kPi * k / half_rings : -0.5f * kPi + 0.5f * kPi * k / half_rings;
+    for (int s = 0; s <= slices; ++s) {
+      const float longitude = 2.0f * kPi * s / slices;
+      vertices.insert(vertices.end(), {std::cos(latitude) * std::cos(longitude), std::sin(latitude),
+                                       std::cos(latitude) * std::sin(longitude), end_b ? 1.0f : 0.0f});
+    }
+  }
+  for (int row = 0; row + 1 < rows; ++row)
+    for (int s = 0; s < slices; ++s) {
+      const unsigned a = row * (slices + 1) + s, b = a + slices + 1;
+      indices.insert(indices.end(), {a, b, a + 1, a + 1, b, b + 1});
+    }
+}
+
+void cube_mesh(std::vector<float>& vertices, std::vector<unsigned>& indices) {
+  const glm::vec3 normals[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  for (const glm::vec3& n : normals) {
+    const glm::vec3 u = std::fabs(n.y) > 0.5f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
+    const glm::vec3 v = glm::cross(n, u);
+    const unsigned base = static_cast<unsigned>(vertices.size() / 6);
+    for (int corner = 0; corner < 4; ++corner) {
+      const float su = (corner == 1 || corner == 2) ? 0.5f : -0.5f, sv = corner >= 2 ? 0.5f : -0.5f;
+      const glm::vec3 p = 0.5f * n + su * u + sv * v;
+      vertices.insert(vertices.end(), {p.x, p.y, p.z, n.x, n.y, n.z});
+    }
+    indices.insert(indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+  }
+}
+
+glm::mat4 box_model(const glm::vec3& origin, float heading, const glm::vec3& local_centre, const glm::vec3& extents) {
+  glm::mat4 m = glm::translate(glm::mat4(1.0f), origin);
+  m = glm::rotate(m, heading, glm::vec3(0, 1, 0));
+  m = glm::translate(m, local_centre);
+  return glm::scale(m, extents);
+}
+
+void bind_float_attribute(GLuint location, int components, int stride, size_t offset, bool per_instance) {
+  glEnableVertexAttribArray(location);
+  glVertexAttribPointer(location, components, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<const void*>(offset));
+  glVertexAttribDivisor(location, per_instance ? 1 : 0);
+}
+
+template <typename T>
+void upload(GLuint buffer, const std::vector<T>& data) {
+  glBindBuffer(GL_ARRAY_BUFFER, buffer);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(data.size() * sizeof(T)), data.empty() ? nullptr : data.data(),
+               GL_STREAM_DRAW);
+}
+
+}  // namespace
+
+void append_character_capsules(const SceneCharacter& character, std::vector<CapsuleInstance>& out) {
+  const Skeleton& skeleton = *character.skeleton;
+  const auto& p = character.joint_positions;
+  const auto& q = character.joint_rotations;
+  const float glow = character.is_source ? 1.0f : 0.0f;
+  const int head = head_joint(skeleton);
+  auto add = [&](const glm::vec3& a, const glm::vec3& b, float radius) {
+    if (radius > 0.0f) out.push_back({glm::vec4(a, radius), glm::vec4(b, glow), character.colour});
+  };
+  for (int j = 0; j < skeleton.size(); ++j) {
+    const Joint& joint = skeleton.joints[j];
+    if (joint.parent == head) continue;  // eyes, jaw, head-top joints: the head is drawn whole below
+    if (joint.parent >= 0 && joint.parent != head)
+      add(p[joint.parent], p[j], bone_radius(lowercase(skeleton.joints[joint.parent].name)));
+    if (joint.has_end_site && j != head) add(p[j], p[j] + q[j] * joint.end_site, bone_radius(lowercase(joint.name)));
+  }
+  // The head: a slightly elongated sphere whose centre sits above the head joint along the head's up
+  // axis (towards its End Site when it has one).
+  const Joint& head_j = skeleton.joints[head];
+  glm::vec3 up = q[head] * (head_j.has_end_site && glm::length(head_j.end_site) > 1e-4f ? glm::normalize(head_j.end_site)
+                                                                                           : glm::vec3(0, 1, 0));
+  const glm::vec3 centre = p[head] + up * kHeadCentreAbove;
+  add(centre - up * 0.02f, centre + up * 0.02f, kHeadRadius);
+}
+
+void append_object_primitives(const SceneObject& object, ScenePrimitives& out) {
+  const glm::vec3 o = object.position;
+  const float h = object.heading;
+  const float glow = object.is_source ? 1.0f : 0.0f;
+  const glm::vec4 main_colour(palette::kObstacle, glow);
+  const glm::vec4 frame_colour(palette::kObstacle * 0.72f, glow);  // posts and legs: same hue, darker
+  auto box = [&](const glm::vec3& centre, const glm::vec3& extents, const glm::vec4& colour) {
+    out.boxes.push_back({box_model(o, h, centre, extents), colour});
+  };
+  const float width = std::max(object.size.x, 0.05f);
+  switch (object.type) {
+    case ObjectType::Ball: {
+      const float r = 0.5f * std::max(object.size.x, 0.02f);
+      const glm::vec3 c = o + glm::vec3(0, r, 0);
+      out.capsules.push_back({glm::vec4(c, r), glm::vec4(c, glow), palette::kBall});
+      break;
+    }
+    case ObjectType::Bar:
+    case ObjectType::Beam: {
+      const float clearance = std::max(object.size.y, 0.0f);
+      const float thickness = object.size.z > 0.0f ? object.size.z : 0.08f;
+      const float post = 0.07f;
+      for (float side : {-1.0f, 1.0f})
+        box({side * 0.5f * (width + post), 0.5f * (clearance + thickness), 0}, {post, clearance + thickness, post}, frame_colour);
+      box({0, clearance + 0.5f * thickness, 0}, {width, thickness, thickness}, main_colour);
+      break;
+    }
+    case ObjectType::Hurdle: {
+      const float top = std::max(object.size.y, 0.05f);
+      const float board = std::min(0.12f, top);
+      const float depth = object.size.z > 0.0f ? object.size.z : 0.03f;
+      box({0, top - 0.5f * board, 0}, {width, board, depth}, main_colour);
+      for (float side : {-1.0f, 1.0f}) {
+        box({side * 0.5f * width, 0.5f * top, 0}, {0.04f, top, 0.04f}, frame_colour);
+        box({side * 0.5f * width, 0.015f, 0}, {0.05f, 0.03f, 0.5f}, frame_colour);
+      }
+      break;
+    }
+    case ObjectType::Box:
+      box({0, 0.5f * object.size.y, 0}, object.size, main_colour);
+      break;
+  }
+}
+
+ScenePrimitives build_primitives(const Scene& scene) {
+  ScenePrimitives prims;
+  for (const SceneCharacter& c : scene.characters) append_character_capsules(c, prims.capsules);
+  for (const SceneObject& o : scene.objects) append_object_primitives(o, prims);
+  for (size_t i = 0; i < scene.goal.size(); ++i) {
+    const glm::vec3 g(scene.goal[i].x, 0.0f, scene.goal[i].z);
+    if (i == 0) {
+      prims.markers.push_back({glm::vec4(g, scene.goal_radius), glm::vec4(palette::kGoal, 0.78f * scene.goal_radius)});
+      prims.markers.push_back({glm::vec4(g, 0.07f), glm::vec4(palette::kGoal, 0.0f)});
+      // A pole with a ball on top, visible from afar and above obstacles.
+      prims.capsules.push_back({glm::vec4(g, 0.02f), glm::vec4(g + glm::vec3(0, 1.3f, 0), 0.0f), palette::kGoal});
+      prims.capsules.push_back({glm::vec4(g + glm::vec3(0, 1.3f, 0), 0.07f), glm::vec4(g + glm::vec3(0, 1.3f, 0), 0.0f), palette::kGoal});
+    } else {
+      prims.markers.push_back({glm::vec4(g, 0.15f), glm::vec4(palette::kGoal, 0.10f)});
+    }
+  }
+  if (scene.source) {
+    const glm::vec3 s(scene.source->x, 0.0f, scene.source->z);
+    prims.markers.push_back({glm::vec4(s, scene.source_radius), glm::vec4(palette::kSource, 0.82f * scene.source_radius)});
+  }
+  return prims;
+}
+
+Renderer::Renderer(const RenderSettings& settings) : settings_(settings) {
+  if (!gl::loaded()) throw std::logic_error("Renderer: no current GL context (gl::load not done)");
+  settings_.light_dir = glm::normalize(settings_.light_dir);
+  capsule_program_ = build_program("capsule.vert", "lit.frag");
+  box_program_ = build_program("box.vert", "lit.frag");
+  capsule_depth_program_ = build_program("capsule.vert", "depth.frag");
+  box_depth_program_ = build_program("box.vert", "depth.frag");
+  ground_program_ = build_program("ground.vert", "ground.frag");
+  marker_program_ = build_program("marker.vert", "marker.frag");
+
+  // Capsules: per-vertex offset + end flag, per-instance a/radius, b/glow, colour.
+  {
+    std::vector<float> v;
+    std::vector<unsigned> idx;
+    capsule_mesh(20, 7, v, idx);
+    capsule_index_count_ = static_cast<int>(idx.size());
+    glGenVertexArrays(1, &capsule_vao_);
+    glBindVertexArray(capsule_vao_);
+    glGenBuffers(1, &capsule_vbo_);
+    glBindBuffer(GL_ARRAY_BUFFER, capsule_vbo_);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(v.size() * sizeof(float)), v.data(), GL_STATIC_DRAW);
+    bind_float_attribute(0, 3, 4 * sizeof(float), 0, false);
+    bind_float_attribute(1, 1, 4 * sizeof(float), 3 * sizeof(float), false);
+    glGenBuffers(1, &capsule_ibo_);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, capsule_ibo_);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(idx.size() * sizeof(unsigned)), idx.data(), GL_STATIC_DRAW);
+    glGenBuffers(1, &capsule_instances_);
+    glBindBuffer(GL_ARRAY_BUFFER, capsule_instances_);
+    bind_float_attribute(2, 4, sizeof(CapsuleInstance), offsetof(CapsuleInstance, a_radius), true);
+    bind_float_attribute(3, 4, sizeof(CapsuleInstance), offsetof(CapsuleInstance, b_glow), true);
+    bind_float_attribute(4, 3, sizeof(CapsuleInstance), offsetof(CapsuleInstance, colour), true);
+  }
+  // Boxes: per-vertex position + normal, per-instance model matrix (4 columns) and colour/glow.
+  {
+    std::vector<float> v;
+    std::vector<unsigned> idx;
+    cube_mesh(v, idx);
+    box_index_count_ = static_cast<int>(idx.size());
+    glGenVertexArrays(1, &box_vao_);
+    glBindVertexArray(box_vao_);
+    glGenBuffers(1, &box_vbo_);
+    glBindBuffer(GL_ARRAY_BUFFER, box_vbo_);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(v.size() * sizeof(float)), v.data(), GL_STATIC_DRAW);
+    bind_float_attribute(0, 3, 6 * sizeof(float), 0, false);
+    bind_float_attribute(1, 3, 6 * sizeof(float), 3 * sizeof(float), false);
+    glGenBuffers(1, &box_ibo_);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, box_ibo_);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(idx.size() * sizeof(unsigned)), idx.data(), GL_STATIC_DRAW);
+    glGenBuffers(1, &box_instances_);
+    glBindBuffer(GL_ARRAY_BUFFER, box_instances_);
+    for (int column = 0; column < 4; ++column)
+      bind_float_attribute(2 + column, 4, sizeof(BoxInstance), offsetof(BoxInstance, model) + column * sizeof(glm::vec4), true);
+    bind_float_attribute(6, 4, sizeof(BoxInstance), offsetof(BoxInstance, colour_glow), true);
+  }
+  // Ground: two triangles 400 m wide (fog hides the edge).
+  {
+    const float s = 200.0f;
+    const float quad[] = {-s, 0, -s, s, 0, -s, s, 0, s, -s, 0, -s, s, 0, s, -s, 0, s};
+    glGenVertexArrays(1, &ground_vao_);
+    glBindVertexArray(ground_vao_);
+    glGenBuffers(1, &ground_vbo_);
+    glBindBuffer(GL_ARRAY_BUFFER, ground_vbo_);
+    glBufferData(GL_ARRAY_BUFFER, sizeof(quad), quad, GL_STATIC_DRAW);
+    bind_float_attribute(0, 3, 3 * sizeof(float), 0, false);
+  }
+  // Markers: a [-1, 1]^2 square per instance.
+  {
+    const float corners[] = {-1, -1, 1, -1, 1, 1, -1, -1, 1, 1, -1, 1};
+    glGenVertexArrays(1, &marker_vao_);
+    glBindVertexArray(marker_vao_);
+    glGenBuffers(1, &marker_vbo_);
+    glBindBuffer(GL_ARRAY_BUFFER, marker_vbo_);
+    glBufferData(GL_ARRAY_BUFFER, sizeof(corners), corners, GL_STATIC_DRAW);
+    bind_float_attribute(0, 2, 2 * sizeof(float), 0, false);
+    glGenBuffers(1, &marker_instances_);
+    glBindBuffer(GL_ARRAY_BUFFER, marker_instances_);
+    bind_float_attribute(1, 4, sizeof(MarkerInstance), offsetof(MarkerInstance, centre_outer), true);
+    bind_float_attribute(2, 4, sizeof(MarkerInstance), offsetof(MarkerInstance, colour_inner), true);
+  }
+  glBindVertexArray(0);
+
+  if (settings_.shadow_map_size > 0) {
+    glGenTextures(1, &shadow_texture_);
+    glBindTexture(GL_TEXTURE_2D, shadow_texture_);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, settings_.shadow_map_size, settings_.shadow_map_size, 0,
+                 GL_DEPTH_COMPONENT, GL_FLOAT, nullptr);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    glGenFramebuffers(1, &shadow_fbo_);
+    glBindFramebuffer(GL_FRAMEBUFFER, shadow_fbo_);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, shadow_texture_, 0);
+    glDrawBuffer(GL_NONE);
+    glReadBuffer(GL_NONE);
+    const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    if (status != GL_FRAMEBUFFER_COMPLETE) throw std::runtime_error("Renderer: the shadow map framebuffer is incomplete");
+  }
+}
+
+Renderer::~Renderer() {
+  const GLuint programs[] = {capsule_program_, box_program_, ground_program_, marker_program_, capsule_depth_program_, box_depth_program_};
+  for (GLuint p : programs) glDeleteProgram(p);
+  const GLuint buffers[] = {capsule_vbo_, capsule_ibo_, capsule_instances_, box_vbo_, box_ibo_, box_instances_,
+                            ground_vbo_, marker_vbo_, marker_instances_};
+  glDeleteBuffers(static_cast<GLsizei>(std::size(buffers)), buffers);
+  const GLuint arrays[] = {capsule_vao_, box_vao_, ground_vao_, marker_vao_};
+  glDeleteVertexArrays(static_cast<GLsizei>(std::size(arrays)), arrays);
+  if (shadow_fbo_) glDeleteFramebuffers(1, &shadow_fbo_);
+  if (shadow_texture_) glDeleteTextures(1, &shadow_texture_);
+}
+
+void Renderer::prepare(const Scene& scene) {
+  primitives_ = build_primitives(scene);
+  focus_ = scene.focus;
+  upload(capsule_instances_, primitives_.capsules);
+  upload(box_instances_, primitives_.boxes);
+  upload(marker_instances_, primitives_.markers);
+  // The shadow camera: orthographic, looking down the light direction at the focus.
+  const glm::vec3 centre(focus_.x, 0.0f, focus_.z);
+  const glm::vec3 up = std::fabs(settings_.light_dir.y) > 0.99f ? glm::vec3(0, 0, 1) : glm::vec3(0, 1, 0);
+  const glm::mat4 view = glm::lookAt(centre + settings_.light_dir * 30.0f, centre, up);
+  const float e = settings_.shadow_extent;
+  light_view_proj_ = glm::ortho(-e, e, -e, e, 1.0f, 60.0f) * view;
+}
+
+void Renderer::draw_capsule_bodies(GLuint program, const glm::mat4& view_proj) {
+  if (primitives_.capsules.empty()) return;
+  glUseProgram(program);
+  glUniformMatrix4fv(glGetUniformLocation(program, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
+  glBindVertexArray(capsule_vao_);
+  glDrawElementsInstanced(GL_TRIANGLES, capsule_index_count_, GL_UNSIGNED_INT, nullptr,
+                          static_cast<GLsizei>(primitives_.capsules.size()));
+  triangles_ += capsule_index_count_ / 3 * static_cast<int>(primitives_.capsules.size());
+}
+
+void Renderer::draw_boxes(GLuint program, const glm::mat4& view_proj) {
+  if (primitives_.boxes.empty()) return;
+  glUseProgram(program);
+  glUniformMatrix4fv(glGetUniformLocation(program, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
+  glBindVertexArray(box_vao_);
+  glDrawElementsInstanced(GL_TRIANGLES, box_index_count_, GL_UNSIGNED_INT, nullptr,
+                          static_cast<GLsizei>(primitives_.boxes.size()));
+  triangles_ += box_index_count_ / 3 * static_cast<int>(primitives_.boxes.size());
+}
+
+void Renderer::shadow_pass() {
+  triangles_ = 0;
+  if (!shadow_fbo_) return;
+  glBindFramebuffer(GL_FRAMEBUFFER, shadow_fbo_);
+  glViewport(0, 0, settings_.shadow_map_size, settings_.shadow_map_size);
+  glDisable(GL_SCISSOR_TEST);
+  glDisable(GL_BLEND);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDepthMask(GL_TRUE);
+  glClear(GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_CULL_FACE);
+  glCullFace(GL_FRONT);  // back faces into the map: less self-shadowing on lit sides
+  draw_capsule_bodies(capsule_depth_program_, light_view_proj_);
+  draw_boxes(box_depth_program_, light_view_proj_);
+  glCullFace(GL_BACK);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void Renderer::set_lighting_uniforms(GLuint program, const glm::vec3& eye) {
+  glUseProgram(program);
+  glUniform3fv(glGetUniformLocation(program, "u_light_dir"), 1, glm::value_ptr(settings_.light_dir));
+  glUniformMatrix4fv(glGetUniformLocation(program, "u_light_view_proj"), 1, GL_FALSE, glm::value_ptr(light_view_proj_));
+  glUniform1i(glGetUniformLocation(program, "u_shadow_map"), 0);
+  glUniform1f(glGetUniformLocation(program, "u_shadow_texel"), shadow_fbo_ ? 1.0f / settings_.shadow_map_size : 0.0f);
+  glUniform3fv(glGetUniformLocation(program, "u_eye"), 1, glm::value_ptr(eye));
+  glUniform3fv(glGetUniformLocation(program, "u_sky"), 1, glm::value_ptr(palette::kSky));
+  glUniform2f(glGetUniformLocation(program, "u_fog_range"), 30.0f, 90.0f);
+  glUniform3fv(glGetUniformLocation(program, "u_source_colour"), 1, glm::value_ptr(palette::kSource));
+}
+
+void Renderer::main_pass(const Camera& camera, int x, int y, int width, int height) {
+  const float aspect = static_cast<float>(width) / static_cast<float>(std::max(height, 1));
+  const glm::mat4 view_proj = camera.view_projection(aspect);
+  const glm::vec3 eye = camera.eye();
+
+  glViewport(x, y, width, height);
+  glEnable(GL_SCISSOR_TEST);
+  glScissor(x, y, width, height);
+  glClearColor(palette::kSky.r, palette::kSky.g, palette::kSky.b, 1.0f);
+  glClearDepth(1.0);
+  glDepthMask(GL_TRUE);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glDisable(GL_SCISSOR_TEST);
+  glDisable(GL_BLEND);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, shadow_texture_);
+
+  glEnable(GL_CULL_FACE);
+  glCullFace(GL_BACK);
+  glFrontFace(GL_CCW);
+  set_lighting_uniforms(capsule_program_, eye);
+  draw_capsule_bodies(capsule_program_, view_proj);
+  set_lighting_uniforms(box_program_, eye);
+  draw_boxes(box_program_, view_proj);
+
+  glDisable(GL_CULL_FACE);
+  set_lighting_uniforms(ground_program_, eye);
+  glUniformMatrix4fv(glGetUniformLocation(ground_program_, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
+  glUniform3fv(glGetUniformLocation(ground_program_, "u_ground"), 1, glm::value_ptr(palette::kGround));
+  glUniform3fv(glGetUniformLocation(ground_program_, "u_grid_line"), 1, glm::value_ptr(palette::kGridLine));
+  glBindVertexArray(ground_vao_);
+  glDrawArrays(GL_TRIANGLES, 0, 6);
+  triangles_ += 2;
+
+  if (!primitives_.markers.empty()) {
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(-1.0f, -4.0f);
+    set_lighting_uniforms(marker_program_, eye);
+    glUniformMatrix4fv(glGetUniformLocation(marker_program_, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
+    glBindVertexArray(marker_vao_);
+    glDrawArraysInstanced(GL_TRIANGLES, 0, 6, static_cast<GLsizei>(primitives_.markers.size()));
+    triangles_ += 2 * static_cast<int>(primitives_.markers.size());
+    glDisable(GL_POLYGON_OFFSET_FILL);
+  }
+  glBindVertexArray(0);
+  glUseProgram(0);
+}
+
+}  // namespace prep::render

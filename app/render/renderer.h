@@ -1,0 +1,95 @@
+// The OpenGL 3.3 core renderer: lit floor with a grid, a shadow map, characters as shaded capsules per
+// bone, obstacles as boxes, balls as spheres, the goal marker and the highlighted source of influence.
+// It draws a Scene (scene.h) and reads nothing else. Requires a current context with gl::load() done.
+#pragma once
+
+#include <glm/mat4x4.hpp>
+#include <vector>
+
+#include "app/render/camera.h"
+#include "app/render/gl_api.h"
+#include "app/render/scene.h"
+
+namespace prep::render {
+
+struct RenderSettings {
+  int shadow_map_size = 2048;  // texels per side; 0 disables shadows
+  float shadow_extent = 9.0f;  // m: half-size of the square around Scene::focus that casts shadows
+  glm::vec3 light_dir{0.45f, 1.0f, 0.35f};  // toward the light (normalized by the renderer)
+};
+
+// Per-instance data (matches the shaders' attributes).
+struct CapsuleInstance {
+  glm::vec4 a_radius;  // end A, radius
+  glm::vec4 b_glow;    // end B, source glow 0..1
+  glm::vec3 colour;
+};
+struct BoxInstance {
+  glm::mat4 model;
+  glm::vec4 colour_glow;
+};
+struct MarkerInstance {
+  glm::vec4 centre_outer;
+  glm::vec4 colour_inner;
+};
+
+// The primitives a scene turns into (public so that tests can check them without a GL context).
+struct ScenePrimitives {
+  std::vector<CapsuleInstance> capsules;
+  std::vector<BoxInstance> boxes;
+  std::vector<MarkerInstance> markers;
+};
+ScenePrimitives build_primitives(const Scene& scene);
+// The capsules of one character's body: one per bone (parent joint -> joint, and joint -> End Site), with
+// radii by body part from the joint names; the head as a near-sphere above the head joint.
+void append_character_capsules(const SceneCharacter& character, std::vector<CapsuleInstance>& out);
+// The boxes of an obstacle (posts, bar, board, feet) or the sphere of a ball.
+void append_object_primitives(const SceneObject& object, ScenePrimitives& out);
+
+class Renderer {
+ public:
+  explicit Renderer(const RenderSettings& settings = {});
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  // The three stages of a frame, separable so that the demo can time each:
+  // upload the scene's instances, render the shadow map, draw the scene into the viewport (GL pixels,
+  // origin bottom-left) of the currently bound framebuffer (clearing that viewport first).
+  void prepare(const Scene& scene);
+  void shadow_pass();
+  void main_pass(const Camera& camera, int x, int y, int width, int height);
+
+  // All three.
+  void draw(const Scene& scene, const Camera& camera, int x, int y, int width, int height) {
+    prepare(scene);
+    shadow_pass();
+    main_pass(camera, x, y, width, height);
+  }
+
+  int triangles_last_frame() const { return triangles_; }
+  const RenderSettings& settings() const { return settings_; }
+
+ private:
+  void set_lighting_uniforms(GLuint program, const glm::vec3& eye);
+  void draw_capsule_bodies(GLuint program, const glm::mat4& view_proj);
+  void draw_boxes(GLuint program, const glm::mat4& view_proj);
+
+  RenderSettings settings_;
+  ScenePrimitives primitives_;
+  glm::vec3 focus_{0.0f};
+  glm::mat4 light_view_proj_{1.0f};
+
+  GLuint capsule_program_ = 0, box_program_ = 0, ground_program_ = 0, marker_program_ = 0;
+  GLuint capsule_depth_program_ = 0, box_depth_program_ = 0;
+  GLuint capsule_vao_ = 0, capsule_vbo_ = 0, capsule_ibo_ = 0, capsule_instances_ = 0;
+  GLuint box_vao_ = 0, box_vbo_ = 0, box_ibo_ = 0, box_instances_ = 0;
+  GLuint ground_vao_ = 0, ground_vbo_ = 0;
+  GLuint marker_vao_ = 0, marker_vbo_ = 0, marker_instances_ = 0;
+  GLuint shadow_fbo_ = 0, shadow_texture_ = 0;
+  int capsule_index_count_ = 0;
+  int box_index_count_ = 0;
+  int triangles_ = 0;
+};
+
+}  // namespace prep::render
