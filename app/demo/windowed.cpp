@@ -1,0 +1,126 @@
+#include "app/demo/windowed.h"
+
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+
+#include <cctype>
+#include <iostream>
+#include <stdexcept>
+
+#include "app/demo/demo_app.h"
+#include "app/render/gl_context.h"
+
+namespace prep::demo {
+
+std::vector<ScriptedKey> parse_key_script(const std::string& text) {
+  std::vector<ScriptedKey> keys;
+  size_t start = 0;
+  while (start < text.size()) {
+    size_t end = text.find(',', start);
+    if (end == std::string::npos) end = text.size();
+    const std::string item = text.substr(start, end - start);
+    start = end + 1;
+    const size_t colon = item.find(':');
+    if (colon == std::string::npos || colon == 0) throw std::invalid_argument("--script: \"" + item + "\" is not FRAME:KEY");
+    ScriptedKey k;
+    try {
+      size_t used = 0;
+      k.frame = std::stoi(item.substr(0, colon), &used);
+      if (used != colon || k.frame < 0) throw std::invalid_argument("frame");
+    } catch (const std::exception&) {
+      throw std::invalid_argument("--script: \"" + item + "\": the frame must be a number >= 0");
+    }
+    std::string name = item.substr(colon + 1);
+    for (char& c : name) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (name.size() == 1 && std::isalpha(static_cast<unsigned char>(name[0]))) k.key = GLFW_KEY_A + (name[0] - 'a');
+    else if (name.size() == 1 && std::isdigit(static_cast<unsigned char>(name[0]))) k.key = GLFW_KEY_0 + (name[0] - '0');
+    else if (name == "space") k.key = GLFW_KEY_SPACE;
+    else if (name == "left") k.key = GLFW_KEY_LEFT;
+    else if (name == "right") k.key = GLFW_KEY_RIGHT;
+    else if (name == "up") k.key = GLFW_KEY_UP;
+    else if (name == "down") k.key = GLFW_KEY_DOWN;
+    else if (name == "escape") k.key = GLFW_KEY_ESCAPE;
+    else throw std::invalid_argument("--script: \"" + item + "\": unknown key \"" + name + "\"");
+    keys.push_back(k);
+  }
+  return keys;
+}
+
+namespace {
+
+struct WindowState {
+  DemoApp* app = nullptr;
+  double last_x = 0.0, last_y = 0.0;
+  bool dragging = false;
+  bool panning = false;
+};
+
+WindowState& state(GLFWwindow* w) { return *static_cast<WindowState*>(glfwGetWindowUserPointer(w)); }
+
+// Installed before ImGui's GLFW backend, which chains to them; each first asks whether ImGui wants the input.
+void on_key(GLFWwindow* w, int key, int, int action, int) {
+  if (ImGui::GetCurrentContext() && ImGui::GetIO().WantCaptureKeyboard) return;
+  if (action == GLFW_PRESS || action == GLFW_REPEAT) state(w).app->on_key(key);
+}
+
+void on_mouse_button(GLFWwindow* w, int button, int action, int) {
+  WindowState& s = state(w);
+  if (action == GLFW_RELEASE) {
+    s.dragging = false;
+    return;
+  }
+  if (ImGui::GetCurrentContext() && ImGui::GetIO().WantCaptureMouse) return;
+  s.dragging = true;
+  s.panning = button != GLFW_MOUSE_BUTTON_LEFT;
+  glfwGetCursorPos(w, &s.last_x, &s.last_y);
+}
+
+void on_cursor(GLFWwindow* w, double x, double y) {
+  WindowState& s = state(w);
+  if (s.dragging) s.app->on_drag(static_cast<float>(x - s.last_x), static_cast<float>(y - s.last_y), s.panning);
+  s.last_x = x;
+  s.last_y = y;
+}
+
+void on_scroll(GLFWwindow* w, double, double dy) {
+  if (ImGui::GetCurrentContext() && ImGui::GetIO().WantCaptureMouse) return;
+  state(w).app->on_scroll(static_cast<float>(dy));
+}
+
+}  // namespace
+
+void run_window(const DemoMotions& motions, const WindowOptions& options) {
+  render::GlfwContext context(options.width, options.height, "prep demo", options.vsync);
+  WindowState window_state;
+  glfwSetWindowUserPointer(context.window(), &window_state);
+  glfwSetKeyCallback(context.window(), on_key);
+  glfwSetMouseButtonCallback(context.window(), on_mouse_button);
+  glfwSetCursorPosCallback(context.window(), on_cursor);
+  glfwSetScrollCallback(context.window(), on_scroll);
+  DemoApp app(context, motions, context.window());
+  window_state.app = &app;
+  app.player.select(app.motions(), options.clip);
+  std::cout << "prep-demo: " << gl::describe_context() << "\n";
+
+  auto previous = Clock::now();
+  for (int frame = 0; !context.should_close() && !app.quit_requested; ++frame) {
+    glfwPollEvents();
+    for (const ScriptedKey& k : options.script)
+      if (k.frame == frame) app.on_key(k.key);
+    const auto now = Clock::now();
+    const float dt = std::min(static_cast<float>(std::chrono::duration<double>(now - previous).count()), 0.1f);
+    previous = now;
+    app.frame(dt);
+    if (!options.screenshot.empty() && frame == options.screenshot_after) {
+      render::write_png(context.read_pixels(), options.screenshot);
+      std::cout << "prep-demo: wrote " << options.screenshot << " (frame " << frame << ")\n";
+      app.quit_requested = true;
+    }
+    const auto t = Clock::now();
+    context.end_frame();
+    app.timings.add(kFinish, ms_since(t));
+    if (options.quit_after >= 0 && frame >= options.quit_after) app.quit_requested = true;
+  }
+}
+
+}  // namespace prep::demo
