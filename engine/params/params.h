@@ -48,6 +48,7 @@ struct BlendParams {
 // Sec. 5.2: foot inverse kinematics.
 struct IkParams {
   float knee_soft_start = 0.97f;  // fraction of full leg length where the reach starts being softened
+  float reach_limit = 0.999f;     // fraction of full leg length the softened reach tends to: the knee keeps ~5 deg
   float release_s = 0.2f;         // s: after lift-off a foot's IK correction fades out over this time
   bool enabled = true;
 };

@@ -1,0 +1,80 @@
+#include "engine/synthesis/blending.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace prep {
+
+BlendCurves make_blend_curves(const Skeleton& skeleton, const BodyMap& body, const BlendParams& params) {
+  const int n = skeleton.size();
+  BlendCurves curves;
+  if (params.method == "linear") {
+    curves.linear = true;
+  } else if (params.method != "ours") {
+    throw std::invalid_argument("blend.method must be \"ours\" or \"linear\", not \"" + params.method + "\"");
+  }
+  curves.root = body.root;
+  curves.C.assign(static_cast<size_t>(n), params.C_lower);
+  curves.c.assign(static_cast<size_t>(n), params.c_scale);
+  for (int i = 0; i < n; ++i) {
+    if (i < static_cast<int>(body.upper_body.size()) && body.upper_body[static_cast<size_t>(i)]) {
+      curves.C[static_cast<size_t>(i)] = params.C_upper;
+    }
+  }
+  for (const auto& [name, value] : params.C_override) {
+    const int j = skeleton.find(name);
+    if (j < 0) throw std::invalid_argument("blend.C_override names no joint of the skeleton: \"" + name + "\"");
+    curves.C[static_cast<size_t>(j)] = value;
+  }
+  for (const auto& [name, value] : params.c_override) {
+    const int j = skeleton.find(name);
+    if (j < 0) throw std::invalid_argument("blend.c_override names no joint of the skeleton: \"" + name + "\"");
+    curves.c[static_cast<size_t>(j)] = value;
+  }
+  for (int i = 0; i < n; ++i) {
+    if (!(curves.C[static_cast<size_t>(i)] > 0.0f)) {
+      throw std::invalid_argument("blend: C_i of joint \"" + skeleton.joints[static_cast<size_t>(i)].name +
+                                  "\" must be positive");
+    }
+  }
+  return curves;
+}
+
+float blend_weight(float alpha, float C, float c) {
+  const float a = std::clamp(alpha, 0.0f, 1.0f);
+  return c * std::sqrt(1.0f - std::pow(1.0f - a, C));  // Eq. 1
+}
+
+void blend_weights(const BlendCurves& curves, float alpha, float* weights) {
+  const size_t n = curves.C.size();
+  if (curves.linear) {
+    std::fill(weights, weights + n, std::clamp(alpha, 0.0f, 1.0f));
+    return;
+  }
+  for (size_t i = 0; i < n; ++i) weights[i] = blend_weight(alpha, curves.C[i], curves.c[i]);
+}
+
+glm::quat blend_rotation(const glm::quat& from, const glm::quat& to, float w) {
+  if (w <= 0.0f) return from;
+  if (w >= 1.0f) return to;
+  glm::quat b = to;
+  float d = glm::dot(from, b);
+  if (d < 0.0f) {  // shorter arc: q and -q are the same rotation
+    b = -b;
+    d = -d;
+  }
+  if (d > 0.9995f) return glm::normalize(from + (b - from) * w);  // nearly equal: lerp is exact enough
+  const float theta = std::acos(d);
+  const float s = std::sin(theta);
+  return (std::sin((1.0f - w) * theta) / s) * from + (std::sin(w * theta) / s) * b;
+}
+
+void blend_joint_rotations(const Pose& locomotion, const Pose& reference, const float* weights, Pose& out) {
+  const size_t n = locomotion.rotations.size();
+  for (size_t i = 1; i < n; ++i) {
+    out.rotations[i] = blend_rotation(locomotion.rotations[i], reference.rotations[i], weights[i]);  // Eq. 2
+  }
+}
+
+}  // namespace prep

@@ -1,0 +1,146 @@
+#include "engine/synthesis/foot_ik.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "engine/motion/kinematics.h"
+
+namespace prep {
+namespace {
+
+float angle_between_unit(glm::vec3 a, glm::vec3 b) { return std::acos(std::clamp(glm::dot(a, b), -1.0f, 1.0f)); }
+
+// The shortest rotation taking direction `from` to direction `to` (both non-zero).
+glm::quat rotation_between(glm::vec3 from, glm::vec3 to) {
+  const glm::vec3 f = glm::normalize(from);
+  const glm::vec3 t = glm::normalize(to);
+  const float d = glm::dot(f, t);
+  if (d > 0.999999f) return glm::quat(1, 0, 0, 0);
+  glm::vec3 axis = glm::cross(f, t);
+  if (glm::dot(axis, axis) < 1e-12f) {  // opposite: any axis perpendicular to f
+    axis = glm::cross(f, std::abs(f.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0));
+  }
+  return glm::angleAxis(std::acos(std::clamp(d, -1.0f, 1.0f)), glm::normalize(axis));
+}
+
+glm::vec3 toe_tip(const Skeleton& skeleton, const LegChain& leg, const std::vector<glm::vec3>& wp,
+                  const std::vector<glm::quat>& wr) {
+  return end_site_position(skeleton, leg.toe_tip_joint, wp, wr);
+}
+
+float smoothstep01(float x) {
+  const float t = std::clamp(x, 0.0f, 1.0f);
+  return t * t * (3.0f - 2.0f * t);
+}
+
+}  // namespace
+
+glm::vec3 solve_leg(const Skeleton& skeleton, const LegChain& leg, const IkParams& params, Pose& pose,
+                    const std::vector<glm::vec3>& wp, const std::vector<glm::quat>& wr, glm::vec3 target,
+                    const glm::quat& foot_world, glm::vec3 forward) {
+  const size_t hip = static_cast<size_t>(leg.hip), knee = static_cast<size_t>(leg.knee),
+               ankle = static_cast<size_t>(leg.ankle);
+  const glm::vec3 a = wp[hip], b = wp[knee], c = wp[ankle];
+  const float upper = glm::length(b - a), lower = glm::length(c - b);
+  const float full = upper + lower;
+  const float eps = 1e-5f * full;
+
+  // Softened reach: exact up to `soft`; beyond it the reach tends to (but never reaches) full length.
+  glm::vec3 to_target = target - a;
+  const float wanted = glm::length(to_target);
+  const float current = glm::length(c - a);
+  const float limit = std::min(params.reach_limit * full, full - eps);
+  const float soft = std::min(std::max(params.knee_soft_start * full, current), limit);
+  float reach = wanted;
+  if (wanted > soft) {
+    const float band = limit - soft;
+    reach = band > 1e-7f ? soft + band * (1.0f - std::exp(-(wanted - soft) / band)) : soft;
+  }
+  reach = std::max(reach, std::abs(upper - lower) + eps);
+  if (wanted > 1e-7f) target = a + to_target * (reach / wanted);
+  else target = c;  // degenerate request: keep the ankle
+  to_target = target - a;
+
+  // Knee: set the hip-ankle distance to `reach` by the law of cosines, bending in the knee's current plane.
+  const glm::vec3 ac = glm::normalize(c - a);
+  glm::vec3 axis = glm::cross(c - a, b - a);
+  if (glm::dot(axis, axis) < 1e-8f * upper * upper * lower * lower) axis = glm::cross(c - a, forward);
+  axis = glm::normalize(axis);
+  const float ac_ab_0 = angle_between_unit(ac, glm::normalize(b - a));
+  const float ba_bc_0 = angle_between_unit(glm::normalize(a - b), glm::normalize(c - b));
+  const float ac_ab_1 =
+      std::acos(std::clamp((lower * lower - upper * upper - reach * reach) / (-2.0f * upper * reach), -1.0f, 1.0f));
+  const float ba_bc_1 =
+      std::acos(std::clamp((reach * reach - upper * upper - lower * lower) / (-2.0f * upper * lower), -1.0f, 1.0f));
+  const glm::quat r0 = glm::angleAxis(ac_ab_1 - ac_ab_0, axis);  // at the hip, in world
+  const glm::quat r1 = glm::angleAxis(ba_bc_1 - ba_bc_0, axis);  // at the knee, in world
+  // Then swing the whole leg about the hip so that the (new) ankle direction points at the target.
+  const glm::vec3 c_bent = a + r0 * (b - a) + (r0 * r1) * (c - b);
+  const glm::quat r2 = rotation_between(c_bent - a, to_target);
+
+  const int hip_parent = skeleton.joints[hip].parent;
+  const glm::quat parent_world = hip_parent >= 0 ? wr[static_cast<size_t>(hip_parent)] : glm::quat(1, 0, 0, 0);
+  const glm::quat hip_world = glm::normalize(r2 * r0 * wr[hip]);
+  const glm::quat knee_world = glm::normalize(r2 * r0 * r1 * wr[knee]);
+  pose.rotations[hip] = glm::normalize(glm::inverse(parent_world) * hip_world);
+  pose.rotations[knee] = glm::normalize(glm::inverse(hip_world) * knee_world);
+  // The shin may not be the ankle's direct parent in every skeleton: compose the joints between them.
+  glm::quat between(1, 0, 0, 0);
+  for (int j = skeleton.joints[ankle].parent; j != static_cast<int>(knee); j = skeleton.joints[static_cast<size_t>(j)].parent) {
+    between = pose.rotations[static_cast<size_t>(j)] * between;
+  }
+  const glm::quat above_ankle = knee_world * between;
+  pose.rotations[ankle] = glm::normalize(glm::inverse(above_ankle) * foot_world);
+  return a + r2 * (r0 * (b - a) + (r0 * r1) * (c - b));
+}
+
+void apply_foot_ik(const Skeleton& skeleton, const BodyMap& body, const IkParams& params,
+                   const FrameContacts& contacts, float dt, Pose& pose, const std::vector<glm::vec3>& wp,
+                   const std::vector<glm::quat>& wr, FootPlants& plants) {
+  const glm::vec3 forward = pose.rotations[static_cast<size_t>(body.root)] * glm::vec3(0.0f, 0.0f, 1.0f);
+  for (int side = 0; side < 2; ++side) {
+    const LegChain& leg = body.legs[static_cast<size_t>(side)];
+    const FootContact& contact = contacts[static_cast<size_t>(side)];
+    FootPlant& plant = plants[static_cast<size_t>(side)];
+    if (!contact.heel) plant.heel_planted = false;
+    if (!contact.toe) plant.toe_planted = false;
+
+    const glm::vec3 heel = wp[static_cast<size_t>(leg.ankle)];
+    const glm::vec3 heel_to_toe = toe_tip(skeleton, leg, wp, wr) - heel;
+    glm::quat foot_world = wr[static_cast<size_t>(leg.ankle)];
+    glm::vec3 foot_vector = heel_to_toe;
+    glm::vec3 target;
+    if (plant.heel_planted) {
+      target = plant.heel_anchor;
+      if (plant.toe_planted && glm::length(plant.toe_anchor - plant.heel_anchor) > 1e-4f) {
+        // Flat foot: turn the foot (smallest rotation) so that its toe tip points at its anchor too.
+        const glm::quat align = rotation_between(heel_to_toe, plant.toe_anchor - plant.heel_anchor);
+        foot_world = glm::normalize(align * foot_world);
+        foot_vector = align * heel_to_toe;
+      }
+    } else if (plant.toe_planted) {
+      target = plant.toe_anchor - heel_to_toe;  // heel off: the foot rolls about its planted toe
+    } else {
+      // Free foot: the correction it had when it lifted off fades out, so the swing joins the blended pose
+      // without a jump.
+      plant.fade = std::max(0.0f, plant.fade - (params.release_s > 0.0f ? dt / params.release_s : 1.0f));
+      target = heel + plant.offset * smoothstep01(plant.fade);
+    }
+    const glm::vec3 reached = solve_leg(skeleton, leg, params, pose, wp, wr, target, foot_world, forward);
+
+    if (contact.heel && !plant.heel_planted) {
+      plant.heel_planted = true;
+      plant.heel_anchor = reached;
+    }
+    if (contact.toe && !plant.toe_planted) {
+      plant.toe_planted = true;
+      plant.toe_anchor = reached + foot_vector;
+    }
+    if (plant.heel_planted || plant.toe_planted) {
+      plant.offset = reached - heel;
+      plant.fade = 1.0f;
+    }
+  }
+}
+
+}  // namespace prep

@@ -1,0 +1,129 @@
+#include "engine/synthesis/synthesizer.h"
+
+#include <stdexcept>
+
+#include "engine/motion/kinematics.h"
+#include "engine/synthesis/trajectory.h"
+
+namespace prep {
+
+Synthesizer::Synthesizer(std::shared_ptr<const Skeleton> skeleton, BodyMap body, const MassModel& mass,
+                         const Params& params)
+    : skeleton_(std::move(skeleton)), body_(std::move(body)), params_(params) {
+  if (!skeleton_) throw std::invalid_argument("Synthesizer: no skeleton");
+  balance_model_ = BalanceModel::build(*skeleton_, body_, mass);
+  if (balance_model_.parts.size() > static_cast<size_t>(kMaxBodyParts)) {
+    throw std::invalid_argument("Synthesizer: the mass model has more body parts than kMaxBodyParts");
+  }
+  curves_ = make_blend_curves(*skeleton_, body_, params_.blend);
+}
+
+void Synthesizer::set_params(const Params& params) {
+  curves_ = make_blend_curves(*skeleton_, body_, params.blend);
+  params_ = params;
+}
+
+SynthesisScratch Synthesizer::make_scratch() const {
+  SynthesisScratch s;
+  const size_t n = static_cast<size_t>(skeleton_->size());
+  s.weights.resize(n);
+  s.positions.resize(n);
+  s.rotations.resize(n);
+  s.style.resize(balance_model_.parts.size());
+  s.balance.resize(skeleton_->size(), static_cast<int>(balance_model_.parts.size()));
+  s.support.hull.reserve(16);
+  return s;
+}
+
+void Synthesizer::stage_blend(const SynthesisInput& in, SynthesisScratch& s, Pose& out) const {
+  blend_weights(curves_, in.alpha, s.weights.data());                                      // Eq. 1
+  blend_joint_rotations(*in.locomotion, *in.reference, s.weights.data(), out);             // Eq. 2
+  const size_t r = static_cast<size_t>(body_.root);
+  out.rotations[r] = blend_root_rotation(in.locomotion->rotations[r], in.reference->rotations[r], s.weights[r]);
+  out.root_position = in.locomotion->root_position;
+}
+
+void Synthesizer::stage_trajectory(const SynthesisInput& in, SynthesisState& state, SynthesisScratch& s,
+                                   Pose& out) const {
+  const glm::vec3 loco_root = in.locomotion->root_position;
+  glm::vec3 displacement(0.0f);
+  if (in.has_displacement) displacement = in.displacement;
+  else if (state.started) displacement = loco_root - state.previous_locomotion_root;
+  if (!state.started) state.root_xz = glm::vec2(loco_root.x, loco_root.z) - glm::vec2(displacement.x, displacement.z);
+  const float w_root = s.weights[static_cast<size_t>(body_.root)];
+  state.root_xz = advance_root(state.root_xz, displacement, w_root);  // Eq. 3-4
+  float dy_left = 0.0f, dy_right = 0.0f;
+  foot_height_changes(*skeleton_, body_, *in.locomotion, out, dy_left, dy_right);
+  out.root_position = glm::vec3(state.root_xz.x, adjust_root_height(loco_root.y, dy_left, dy_right),  // Eq. 5
+                                state.root_xz.y);
+  state.previous_locomotion_root = loco_root;
+  state.started = true;
+}
+
+void Synthesizer::stage_ik(const SynthesisInput& in, SynthesisState& state, SynthesisScratch& s, Pose& out) const {
+  forward_kinematics(*skeleton_, out, s.positions, &s.rotations);
+  if (!params_.ik.enabled) return;
+  apply_foot_ik(*skeleton_, body_, params_.ik, in.contacts, in.dt, out, s.positions, s.rotations, state.feet);
+  forward_kinematics(*skeleton_, out, s.positions, &s.rotations);
+}
+
+void Synthesizer::stage_balance(const SynthesisInput& in, SynthesisState& state, SynthesisScratch& s, Pose& out,
+                                SynthesisReport* report) const {
+  // Needs s.positions / s.rotations = forward kinematics of `out` (stage_ik leaves them so).
+  const FootPoints feet = foot_points(*skeleton_, body_, s.positions, s.rotations);
+  s.support = support_polygon(feet, in.contacts, params_.contacts);
+  const size_t n_parts = balance_model_.parts.size();
+  part_centroids(*skeleton_, balance_model_, s.positions, s.rotations, s.style.data());
+
+  BalanceTargets targets;
+  targets.style = s.style.data();
+  if (state.history >= 2) {
+    targets.previous = state.previous.data();
+    targets.before_previous = state.before_previous.data();
+  }
+  const bool has_support = !s.support.empty();
+  if (has_support) targets.support_centre = s.support.center();
+  const BalanceParams& bp = params_.balance;
+  const bool optimize = bp.enabled && has_support && in.alpha >= bp.alpha_threshold && bp.max_steps > 0;
+
+  BalanceResult result;
+  const glm::vec3* final_centroids = s.style.data();
+  if (optimize) {
+    result = optimize_balance(*skeleton_, balance_model_, bp, targets, out, s.balance);
+    final_centroids = s.balance.centroids.data();
+  } else if (report && has_support) {
+    result.before = result.after = balance_cost(balance_model_, bp, targets, s.style.data());
+  }
+
+  if (report) {
+    report->alpha = in.alpha;
+    report->w_root = s.weights[static_cast<size_t>(body_.root)];
+    report->has_support = has_support;
+    report->balanced = result.optimized;
+    report->balance_steps = result.steps;
+    report->feet = feet;
+    if (has_support) {
+      const glm::vec3 before = model_center_of_mass(balance_model_, s.style.data());
+      const glm::vec3 after = model_center_of_mass(balance_model_, final_centroids);
+      report->com_distance_before = result.before.com_distance;
+      report->com_distance_after = result.after.com_distance;
+      report->com_inside_before = s.support.contains({before.x, before.z});
+      report->com_inside_after = s.support.contains({after.x, after.z});
+    }
+  }
+
+  std::copy(state.previous.begin(), state.previous.begin() + static_cast<long>(n_parts), state.before_previous.begin());
+  std::copy(final_centroids, final_centroids + n_parts, state.previous.begin());
+  state.history = std::min(state.history + 1, 2);
+}
+
+void Synthesizer::step(const SynthesisInput& in, SynthesisState& state, SynthesisScratch& scratch, Pose& out,
+                       SynthesisReport* report) const {
+  if (!in.locomotion || !in.reference) throw std::invalid_argument("Synthesizer::step: no locomotion or reference pose");
+  stage_blend(in, scratch, out);
+  stage_trajectory(in, state, scratch, out);
+  stage_ik(in, state, scratch, out);
+  stage_balance(in, state, scratch, out, report);
+}
+
+}  // namespace prep

@@ -1,0 +1,116 @@
+// Sec. 5 as one unit: locomotion pose + contacts, the reference posture T_p and the level of preparation
+// alpha in, the prepared pose out. The player, the controller, the demo and the tools all synthesize
+// through this class.
+//
+// Per frame: blending (Eq. 1-2, blending.h) -> trajectory (Eq. 3-5, trajectory.h) -> foot IK (foot_ik.h)
+// -> balance optimization (Eq. 6-10, balance.h).
+//
+// Memory: a Synthesizer holds what depends only on the skeleton and Params (shared by every character on
+// that skeleton). A SynthesisState is one character's memory between frames: plain data, no heap, under a
+// kilobyte. A SynthesisScratch holds working buffers (one per thread). step() allocates nothing, except
+// the support polygon's small hull vector (support_polygon.h returns it by value).
+#pragma once
+
+#include <array>
+#include <memory>
+#include <vector>
+
+#include "engine/motion/body_map.h"
+#include "engine/motion/center_of_mass.h"
+#include "engine/motion/contacts.h"
+#include "engine/motion/motion_set.h"
+#include "engine/motion/pose.h"
+#include "engine/motion/skeleton.h"
+#include "engine/motion/support_polygon.h"
+#include "engine/params/params.h"
+#include "engine/synthesis/balance.h"
+#include "engine/synthesis/blending.h"
+#include "engine/synthesis/foot_ik.h"
+
+namespace prep {
+
+constexpr int kMaxBodyParts = 24;  // body parts of the mass model the state can remember (de Leva has 14-16)
+
+// One character's synthesis memory.
+struct SynthesisState {
+  bool started = false;
+  glm::vec3 previous_locomotion_root{0.0f};  // to take the locomotion's per-frame displacement (Eq. 3-4)
+  glm::vec2 root_xz{0.0f};                   // the synthesized root's accumulated floor position
+  FootPlants feet;                           // planted feet (foot IK)
+  int history = 0;                           // optimized frames remembered (0-2), for Eq. 8-9
+  std::array<glm::vec3, kMaxBodyParts> previous{};         // body-part centroids at t-1
+  std::array<glm::vec3, kMaxBodyParts> before_previous{};  // ... at t-2
+};
+
+struct SynthesisInput {
+  const Pose* locomotion = nullptr;  // the locomotion pose L at this frame (world root position)
+  FrameContacts contacts{};          // the locomotion's foot contacts at this frame (kept in the output, Sec. 5.2)
+  const Pose* reference = nullptr;   // T_p
+  float alpha = 0.0f;                // level of preparation
+  float dt = 1.0f / 30.0f;           // frame time (s)
+  // The locomotion's root displacement since the previous frame. When not given it is taken from the
+  // previous call's locomotion root (state.previous_locomotion_root); give it when the locomotion jumps
+  // (e.g. the player re-aligned it) or on the first frame of a moving stream.
+  bool has_displacement = false;
+  glm::vec3 displacement{0.0f};
+};
+
+struct SynthesisReport {
+  float alpha = 0.0f;
+  float w_root = 0.0f;
+  bool has_support = false;           // some foot in contact
+  bool balanced = false;              // the optimizer ran
+  int balance_steps = 0;
+  float com_distance_before = 0.0f;   // |COM - support centre| on the floor before optimization (m)
+  float com_distance_after = 0.0f;    // ... after
+  bool com_inside_before = false;     // COM inside the support polygon before / after optimization
+  bool com_inside_after = false;
+  FootPoints feet{};                  // heel and toe tips of the output pose (world)
+};
+
+struct SynthesisScratch {
+  std::vector<float> weights;
+  std::vector<glm::vec3> positions;
+  std::vector<glm::quat> rotations;
+  std::vector<glm::vec3> style;  // centroids of the posture before optimization
+  BalanceScratch balance;
+  SupportPolygon support;
+};
+
+class Synthesizer {
+ public:
+  Synthesizer(std::shared_ptr<const Skeleton> skeleton, BodyMap body, const MassModel& mass, const Params& params);
+  Synthesizer(const MotionSet& set, const Params& params)
+      : Synthesizer(set.skeleton, set.body, set.mass, params) {}
+
+  // Changes the constants (e.g. from the demo's panels); the blending curves are rebuilt.
+  void set_params(const Params& params);
+  const Params& params() const { return params_; }
+  const Skeleton& skeleton() const { return *skeleton_; }
+  const BodyMap& body() const { return body_; }
+  const BlendCurves& curves() const { return curves_; }
+  const BalanceModel& balance_model() const { return balance_model_; }
+
+  SynthesisScratch make_scratch() const;
+  Pose make_pose() const { return Pose(skeleton_->size()); }
+
+  // One frame. `out` must have one rotation per joint (make_pose()).
+  void step(const SynthesisInput& in, SynthesisState& state, SynthesisScratch& scratch, Pose& out,
+            SynthesisReport* report = nullptr) const;
+
+  // The stages of step(), in order, for benchmarks and tests.
+  void stage_blend(const SynthesisInput& in, SynthesisScratch& scratch, Pose& out) const;
+  void stage_trajectory(const SynthesisInput& in, SynthesisState& state, SynthesisScratch& scratch, Pose& out) const;
+  void stage_ik(const SynthesisInput& in, SynthesisState& state, SynthesisScratch& scratch, Pose& out) const;
+  void stage_balance(const SynthesisInput& in, SynthesisState& state, SynthesisScratch& scratch, Pose& out,
+                     SynthesisReport* report) const;
+
+ private:
+  std::shared_ptr<const Skeleton> skeleton_;
+  BodyMap body_;
+  Params params_;
+  BlendCurves curves_;
+  BalanceModel balance_model_;
+};
+
+}  // namespace prep

@@ -1,0 +1,51 @@
+#include "engine/synthesis/trajectory.h"
+
+#include <cmath>
+
+#include "engine/synthesis/blending.h"
+
+namespace prep {
+
+glm::vec2 advance_root(glm::vec2 previous_root_xz, glm::vec3 locomotion_displacement, float w_root) {
+  const float keep = 1.0f - w_root;
+  return {previous_root_xz.x + keep * locomotion_displacement.x,   // Eq. 3
+          previous_root_xz.y + keep * locomotion_displacement.z};  // Eq. 4
+}
+
+float adjust_root_height(float locomotion_root_y, float foot_dy_left, float foot_dy_right) {
+  return locomotion_root_y - 0.5f * (foot_dy_left + foot_dy_right);  // Eq. 5
+}
+
+float height_relative_to_root(const Skeleton& skeleton, const Pose& pose, int joint) {
+  // Walk up from the joint: a point p in joint j's frame is offset_j + R_j * p in its parent's frame.
+  // Chains are short (hip, knee, ankle), so this is a few quaternion rotations rather than a
+  // whole-skeleton pass. The joint's own origin starts as p = 0.
+  glm::vec3 p(0.0f);
+  int j = joint;
+  while (j > 0) {
+    const Joint& J = skeleton.joints[static_cast<size_t>(j)];
+    p = J.offset + pose.rotations[static_cast<size_t>(j)] * p;
+    j = J.parent;
+  }
+  return (pose.rotations[0] * p).y;
+}
+
+void foot_height_changes(const Skeleton& skeleton, const BodyMap& body, const Pose& locomotion, const Pose& blended,
+                         float& dy_left, float& dy_right) {
+  const int la = body.legs[kLeft].ankle;
+  const int ra = body.legs[kRight].ankle;
+  dy_left = height_relative_to_root(skeleton, blended, la) - height_relative_to_root(skeleton, locomotion, la);
+  dy_right = height_relative_to_root(skeleton, blended, ra) - height_relative_to_root(skeleton, locomotion, ra);
+}
+
+glm::quat heading_rotation(float heading) { return glm::angleAxis(heading, glm::vec3(0.0f, 1.0f, 0.0f)); }
+
+glm::quat blend_root_rotation(const glm::quat& locomotion_root, const glm::quat& reference_root, float w_root) {
+  if (w_root <= 0.0f) return locomotion_root;  // exactly the locomotion at alpha = 0
+  const glm::quat loco_heading = heading_rotation(heading_of(locomotion_root));
+  const glm::quat loco_tilt = glm::inverse(loco_heading) * locomotion_root;
+  const glm::quat ref_tilt = glm::inverse(heading_rotation(heading_of(reference_root))) * reference_root;
+  return glm::normalize(loco_heading * blend_rotation(loco_tilt, ref_tilt, w_root));  // Eq. 2 on the root
+}
+
+}  // namespace prep
