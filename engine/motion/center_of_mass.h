@@ -5,6 +5,7 @@
 // fraction of its length from the proximal joint. The paper cites Armstrong (1988) for the same purpose.
 #pragma once
 
+#include <glm/gtc/quaternion.hpp>
 #include <glm/vec3.hpp>
 #include <string>
 #include <vector>

@@ -13,10 +13,13 @@ namespace prep {
 
 // Sec. 4 data: per-frame foot contacts (heel and toe) from heights and speeds, with hysteresis.
 struct ContactParams {
-  float height_on = 0.06f;   // m above the floor: a point below this may enter contact
-  float height_off = 0.09f;  // m: a point in contact leaves it only above this (hysteresis)
-  float speed_on = 0.35f;    // m/s horizontal+vertical speed under which a point may enter contact
-  float speed_off = 0.60f;   // m/s: a point in contact leaves it only above this
+  // Heights count from where the point rests when planted (contacts.h). Tuned on the CMU walks (daz43
+  // and cmu31): 55-72% of frames per foot, alternating single and double support. A planted foot rolls
+  // (heel rise, toe pivot) at up to ~0.6 m/s at its heel or toe; a swinging foot moves at 2-4 m/s.
+  float height_on = 0.05f;   // m above the planted height: a point below this may enter contact
+  float height_off = 0.08f;  // m: a point in contact leaves it only above this (hysteresis)
+  float speed_on = 0.8f;     // m/s horizontal+vertical speed under which a point may enter contact
+  float speed_off = 1.2f;    // m/s: a point in contact leaves it only above this
   float foot_width = 0.09f;  // m: lateral width of a footprint in the support polygon
 };
 

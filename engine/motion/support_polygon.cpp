@@ -1,0 +1,104 @@
+#include "engine/motion/support_polygon.h"
+
+#include <algorithm>
+#include <cmath>
+#include <glm/geometric.hpp>
+
+namespace prep {
+namespace {
+
+// Points closer than this (metres) count as one, and a point this close to an edge is on it.
+constexpr float kEpsilon = 1e-6f;
+
+float cross(glm::vec2 o, glm::vec2 a, glm::vec2 b) { return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x); }
+
+float distance_to_segment(glm::vec2 p, glm::vec2 a, glm::vec2 b) {
+  const glm::vec2 ab = b - a;
+  const float len2 = glm::dot(ab, ab);
+  const float t = len2 > 0.0f ? std::clamp(glm::dot(p - a, ab) / len2, 0.0f, 1.0f) : 0.0f;
+  return glm::length(p - (a + ab * t));
+}
+
+}  // namespace
+
+std::vector<glm::vec2> convex_hull(std::vector<glm::vec2> points) {
+  std::sort(points.begin(), points.end(), [](glm::vec2 a, glm::vec2 b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
+  points.erase(std::unique(points.begin(), points.end(),
+                           [](glm::vec2 a, glm::vec2 b) { return glm::length(a - b) <= kEpsilon; }),
+               points.end());
+  if (points.size() < 3) return points;
+  // Andrew's monotone chain: lower hull left to right, then upper hull right to left; collinear points
+  // are dropped (cross <= 0 pops), which keeps the hull strictly convex.
+  std::vector<glm::vec2> hull(2 * points.size());
+  size_t k = 0;
+  for (size_t i = 0; i < points.size(); ++i) {
+    while (k >= 2 && cross(hull[k - 2], hull[k - 1], points[i]) <= 0.0f) --k;
+    hull[k++] = points[i];
+  }
+  for (size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {
+    while (k >= lower && cross(hull[k - 2], hull[k - 1], points[i]) <= 0.0f) --k;
+    hull[k++] = points[i];
+  }
+  hull.resize(k - 1);  // the last point repeats the first
+  return hull;
+}
+
+bool SupportPolygon::contains(glm::vec2 p) const { return !empty() && distance_outside(p) <= kEpsilon; }
+
+float SupportPolygon::distance_outside(glm::vec2 p) const {
+  if (hull.empty()) return INFINITY;
+  if (hull.size() == 1) return glm::length(p - hull[0]);
+  if (hull.size() == 2) return distance_to_segment(p, hull[0], hull[1]);
+  bool inside = true;
+  float nearest = INFINITY;
+  for (size_t i = 0; i < hull.size(); ++i) {
+    const glm::vec2 a = hull[i], b = hull[(i + 1) % hull.size()];
+    if (cross(a, b, p) < 0.0f) inside = false;  // right of a counter-clockwise edge: outside
+    nearest = std::min(nearest, distance_to_segment(p, a, b));
+  }
+  return inside ? 0.0f : nearest;
+}
+
+glm::vec2 SupportPolygon::center() const {
+  if (hull.empty()) return glm::vec2(0.0f);
+  glm::vec2 mean(0.0f);
+  for (glm::vec2 p : hull) mean += p;
+  mean /= static_cast<float>(hull.size());
+  // Area centroid by the shoelace formula, taken about the mean to keep the sums well conditioned.
+  float area2 = 0.0f;
+  glm::vec2 sum(0.0f);
+  for (size_t i = 0; i < hull.size(); ++i) {
+    const glm::vec2 a = hull[i] - mean, b = hull[(i + 1) % hull.size()] - mean;
+    const float c = a.x * b.y - b.x * a.y;
+    area2 += c;
+    sum += (a + b) * c;
+  }
+  if (std::abs(area2) <= kEpsilon * kEpsilon) return mean;
+  return mean + sum / (3.0f * area2);
+}
+
+SupportPolygon support_polygon(const FootPoints& feet, const FrameContacts& contacts, const ContactParams& params) {
+  std::vector<glm::vec2> points;
+  const float half = 0.5f * params.foot_width;
+  for (size_t s = 0; s < 2; ++s) {
+    const FootContact& c = contacts[s];
+    if (!c.any()) continue;
+    const glm::vec2 heel(feet.heel[s].x, feet.heel[s].z), toe(feet.toe[s].x, feet.toe[s].z);
+    const float length = glm::length(toe - heel);
+    const glm::vec2 along = length > kEpsilon ? (toe - heel) / length : glm::vec2(0.0f, 1.0f);
+    const glm::vec2 side(along.y, -along.x);
+    // A heel-only contact is a patch reaching half a foot width toward the toe; a toe-only contact one
+    // reaching back toward the heel; both give the whole sole.
+    const glm::vec2 back = c.heel ? heel : toe - along * half;
+    const glm::vec2 front = c.toe ? toe : heel + along * half;
+    for (glm::vec2 end : {back, front}) {
+      points.push_back(end + side * half);
+      points.push_back(end - side * half);
+    }
+  }
+  SupportPolygon polygon;
+  polygon.hull = convex_hull(std::move(points));
+  return polygon;
+}
+
+}  // namespace prep

@@ -1,0 +1,126 @@
+#include "engine/motion/support_polygon.h"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+using namespace prep;
+
+namespace {
+
+float signed_area(const std::vector<glm::vec2>& h) {
+  float a = 0;
+  for (size_t i = 0; i < h.size(); ++i) {
+    const glm::vec2 p = h[i], q = h[(i + 1) % h.size()];
+    a += p.x * q.y - q.x * p.y;
+  }
+  return 0.5f * a;
+}
+
+}  // namespace
+
+TEST_CASE("support polygon: convex hull drops interior and collinear points, counter-clockwise") {
+  const std::vector<glm::vec2> pts = {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0.5f, 0.5f}, {0.5f, 0}, {1, 0.5f}, {0, 0}, {0.2f, 0.7f}};
+  const auto hull = convex_hull(pts);
+  CHECK(hull.size() == 4);
+  CHECK(signed_area(hull) == doctest::Approx(1.0f));  // positive: counter-clockwise in (x, z)
+}
+
+TEST_CASE("support polygon: contains is inclusive on edges and vertices") {
+  SupportPolygon sq;
+  sq.hull = convex_hull({{0, 0}, {2, 0}, {2, 2}, {0, 2}});
+  CHECK(sq.contains({1, 1}));
+  CHECK(sq.contains({0, 1}));  // on an edge
+  CHECK(sq.contains({2, 2}));  // a vertex
+  CHECK_FALSE(sq.contains({2.01f, 1}));
+  CHECK_FALSE(sq.contains({-0.5f, -0.5f}));
+  CHECK(sq.distance_outside({1, 1}) == 0.0f);
+  CHECK(sq.distance_outside({3, 1}) == doctest::Approx(1.0f));
+  CHECK(sq.distance_outside({3, 3}) == doctest::Approx(std::sqrt(2.0f)));
+}
+
+TEST_CASE("support polygon: the centre is the area centroid") {
+  SupportPolygon sq;
+  sq.hull = convex_hull({{0, 0}, {1, 0}, {1, 1}, {0, 1}});
+  CHECK(sq.center().x == doctest::Approx(0.5f));
+  CHECK(sq.center().y == doctest::Approx(0.5f));
+  // A trapezoid with many vertices bunched on one side: the area centroid is not the vertex mean.
+  SupportPolygon trap;
+  trap.hull = convex_hull({{0, 0}, {4, 0}, {3, 1}, {1, 1}});
+  // Bases 4 (at y = 0) and 2 (at y = 1): centroid height (4 + 2 * 2) / (3 * (4 + 2)) = 4/9.
+  CHECK(trap.center().x == doctest::Approx(2.0f));
+  CHECK(trap.center().y == doctest::Approx(4.0f / 9.0f));
+  // Far from the origin the result stays exact (sums are taken about the mean).
+  SupportPolygon far;
+  far.hull = convex_hull({{1000, 1000}, {1001, 1000}, {1001, 1001}, {1000, 1001}});
+  CHECK(far.center().x == doctest::Approx(1000.5f));
+}
+
+TEST_CASE("support polygon: degenerate inputs") {
+  CHECK(convex_hull({}).empty());
+  SupportPolygon none;
+  CHECK(none.empty());
+  CHECK_FALSE(none.contains({0, 0}));
+  CHECK(std::isinf(none.distance_outside({0, 0})));
+  SupportPolygon point;
+  point.hull = convex_hull({{1, 1}, {1, 1}, {1, 1}});
+  REQUIRE(point.hull.size() == 1);
+  CHECK(point.contains({1, 1}));
+  CHECK(point.center().x == doctest::Approx(1.0f));
+  CHECK(point.distance_outside({4, 5}) == doctest::Approx(5.0f));
+  SupportPolygon line;
+  line.hull = convex_hull({{0, 0}, {1, 1}, {2, 2}, {0.5f, 0.5f}});
+  REQUIRE(line.hull.size() == 2);
+  CHECK(line.contains({1.5f, 1.5f}));
+  CHECK_FALSE(line.contains({1, 0}));
+  CHECK(line.center().x == doctest::Approx(1.0f));  // the mean of the two ends
+}
+
+namespace {
+
+FootPoints feet_at(float left_x, float right_x) {
+  FootPoints f;
+  f.heel[kLeft] = {left_x, 0.08f, 0};
+  f.toe[kLeft] = {left_x, 0.0f, 0.2f};
+  f.heel[kRight] = {right_x, 0.08f, 0};
+  f.toe[kRight] = {right_x, 0.0f, 0.2f};
+  return f;
+}
+
+float area(const SupportPolygon& p) { return std::abs(signed_area(p.hull)); }
+
+}  // namespace
+
+TEST_CASE("support polygon: from footprints") {
+  ContactParams params;
+  const FootPoints feet = feet_at(0.1f, -0.1f);
+  FrameContacts c;
+  CHECK(support_polygon(feet, c, params).empty());  // flight
+
+  c[kLeft] = {true, true};  // single support: the whole sole, foot_width wide
+  const SupportPolygon single = support_polygon(feet, c, params);
+  CHECK(area(single) == doctest::Approx(0.2f * params.foot_width));
+  CHECK(single.contains({0.1f, 0.1f}));
+  CHECK_FALSE(single.contains({0.0f, 0.1f}));
+  CHECK(single.center().x == doctest::Approx(0.1f));
+  CHECK(single.center().y == doctest::Approx(0.1f));
+
+  c[kLeft] = {true, false};  // heel only: a small patch, never a line
+  const SupportPolygon heel = support_polygon(feet, c, params);
+  CHECK(area(heel) > 0.25f * params.foot_width * params.foot_width);
+  CHECK(heel.contains({0.1f, 0.0f}));
+  CHECK_FALSE(heel.contains({0.1f, 0.15f}));
+
+  c[kLeft] = {false, true};  // toe only
+  const SupportPolygon toe = support_polygon(feet, c, params);
+  CHECK(area(toe) > 0.25f * params.foot_width * params.foot_width);
+  CHECK(toe.contains({0.1f, 0.2f}));
+  CHECK_FALSE(toe.contains({0.1f, 0.0f}));
+
+  c[kLeft] = {true, true};  // double support: the midpoint between the feet is inside
+  c[kRight] = {true, true};
+  const SupportPolygon both = support_polygon(feet, c, params);
+  CHECK(both.contains({0.0f, 0.1f}));
+  CHECK(area(both) == doctest::Approx((0.2f + params.foot_width) * 0.2f));
+  CHECK(both.center().x == doctest::Approx(0.0f).epsilon(1e-6));
+}
