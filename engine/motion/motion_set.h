@@ -42,6 +42,7 @@ struct MotionSet {
   BodyMap body;
   MassModel mass;
   std::vector<MotionClip> clips;
+  std::vector<std::string> warnings;  // non-fatal findings while loading (e.g. a BVH whose Frames: count is off)
 
   int find(std::string_view clip_name) const;  // index or -1
 };
@@ -55,13 +56,23 @@ struct MotionSet {
 //   "unit_scale": 0.01,                    // file units -> metres (or "units": "centimetres"|"inches"|"cmu"|"metres")
 //   "skip_first_frame": true,              // daz43: frame 0 is the converter's reference pose
 //   "reference": "walk_02_01.bvh",         // the clip whose skeleton is the set's (default: the first clip)
+//   "floor": "auto",                       // default floor rule for every clip (see below)
+//   "description": "...",                  // free text (also "notes" on a clip)
 //   "clips": [
 //     {"name": "walk", "file": "walk_02_01.bvh", "role": "walk", "frames": [1, 343], "loop": [10, 140]},
 //     {"name": "jump", "file": "jump_forward_13_11.bvh", "role": "jump", "frames": [100, 330], "t_t": 237}
 //   ]
 // }
-// "frames" and "t_t" count the file's frames; clips from other performers (same joint names, other
-// offsets) play on the reference skeleton: rotations kept, root translation scaled by the leg-length ratio.
+// "frames", "loop" and "t_t" count the file's frames (inclusive ranges); clips from other performers (same
+// joint names, other offsets) play on the reference skeleton: rotations kept, root translation scaled by
+// the leg-length ratio (thigh + shin, both legs averaged).
+// "floor" per clip (or for the whole manifest): a number is the floor's height in metres in the clip's
+// scaled coordinates, subtracted from the root; "auto" (the default) estimates it from the feet: per frame
+// the lowest of the heel (ankle joint) and toe-tip heights of both feet; per 1-second window the 10th
+// percentile of that, placed at the window's centre; the floor follows these values piecewise-linearly
+// through the clip, the first and last segments extended to its ends (captured floors drift by several cm
+// over a clip, steadily); a clip shorter than 1.5 windows gets one constant floor.
+// Unknown fields and wrong types are errors naming the manifest and the field.
 MotionSet load_motion_set(const std::string& manifest_path, const Params& params);
 
 // Fills the derived data (body map, mass model, contacts) of a set whose skeleton and clips are set.

@@ -390,3 +390,26 @@ TEST_CASE("numbers parse the same under a comma-decimal locale") {
   CHECK(format_bvh(clip).find("Frame Time: 0.5\n") != std::string::npos);
   std::setlocale(LC_NUMERIC, previous.c_str());
 }
+
+TEST_CASE("every truncation and single-byte corruption of a valid file loads or throws InputError naming it") {
+  const std::string text(kSmall);
+  const char replacements[] = {'{', '}', 'x', '\n', '-', '9', ' ', '.', 'e', '\0'};
+  auto try_parse = [](const std::string& t) {
+    try {
+      const Clip clip = parse_bvh(t, "mutant.bvh");
+      CHECK(clip.frame_count() >= 1);
+      CHECK(clip.skeleton->size() >= 1);
+      for (const Pose& p : clip.frames) CHECK(p.rotations.size() == static_cast<size_t>(clip.skeleton->size()));
+    } catch (const InputError& e) {
+      CHECK(e.file() == "mutant.bvh");
+      CHECK(e.line() >= 1);
+    }
+  };
+  for (size_t cut = 0; cut <= text.size(); ++cut) try_parse(text.substr(0, cut));
+  for (size_t i = 0; i < text.size(); ++i)
+    for (char r : replacements) {
+      std::string t = text;
+      t[i] = r;
+      try_parse(t);
+    }
+}

@@ -1,0 +1,291 @@
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <string>
+
+#include "engine/motion/bvh.h"
+#include "engine/motion/kinematics.h"
+#include "engine/motion/motion_set.h"
+#include "engine/util/error.h"
+#include "tests/support/paths.h"
+
+using namespace prep;
+namespace fs = std::filesystem;
+
+namespace {
+
+const MotionSet& manifest_set(const std::string& name) {
+  static std::map<std::string, MotionSet> cache;
+  auto it = cache.find(name);
+  if (it == cache.end()) it = cache.emplace(name, load_motion_set(test::repo() + "/assets/manifests/" + name + ".json", Params{})).first;
+  return it->second;
+}
+
+std::set<std::string> bvh_files_in(const std::string& folder) {
+  std::set<std::string> out;
+  for (const auto& f : fs::directory_iterator(folder))
+    if (f.path().extension() == ".bvh") out.insert(f.path().filename().string());
+  return out;
+}
+
+// Joint positions in the root's heading frame (yaw and horizontal position removed): what a loop join
+// must match.
+std::vector<glm::vec3> local_positions(const Clip& clip, int frame) {
+  std::vector<glm::vec3> p;
+  forward_kinematics(*clip.skeleton, clip.frames[static_cast<size_t>(frame)], p);
+  const glm::quat unyaw = glm::angleAxis(-heading_of(clip.frames[static_cast<size_t>(frame)].rotations[0]), glm::vec3(0, 1, 0));
+  const glm::vec3 origin(p[0].x, 0.0f, p[0].z);
+  for (glm::vec3& v : p) v = unyaw * (v - origin);
+  return p;
+}
+
+double pose_distance(const Clip& clip, int a, int b) {
+  const auto pa = local_positions(clip, a), pb = local_positions(clip, b);
+  double sum = 0;
+  for (size_t j = 0; j < pa.size(); ++j) sum += glm::dot(pa[j] - pb[j], pa[j] - pb[j]);
+  return std::sqrt(sum / static_cast<double>(pa.size()));
+}
+
+// A scratch manifest for the error tests, in the build's temporary folder.
+std::string write_manifest(const std::string& name, const std::string& text) {
+  fs::create_directories(test::tmp_dir());
+  const std::string path = test::tmp_dir() + "/" + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+std::string cmu31_manifest(const std::string& clips, const std::string& extra = "") {
+  return "{\"name\": \"t\", \"folder\": \"" + test::mocap() + "/cmu31\", \"units\": \"cmu\"" + extra +
+         ", \"clips\": [" + clips + "]}";
+}
+
+}  // namespace
+
+TEST_CASE("role names round-trip and split into locomotion and target motions") {
+  for (int i = 0; i < kRoleCount; ++i) {
+    const Role r = static_cast<Role>(i);
+    REQUIRE(parse_role(role_name(r)).has_value());
+    CHECK(*parse_role(role_name(r)) == r);
+  }
+  CHECK_FALSE(parse_role("run").has_value());
+  CHECK(is_locomotion(Role::TurnRight));
+  CHECK_FALSE(is_locomotion(Role::Kick));
+}
+
+TEST_CASE("both CMU manifests load and list every clip of their folder with its role") {
+  // Roles ../shared/mocap/README.md lists for the two folders.
+  const std::map<std::string, std::string> role_by_prefix = {{"idle", "idle"},   {"walk", "walk"},  {"run", "walk"},
+                                                             {"turn_left", "turn_left"}, {"crawl", "crawl"},
+                                                             {"duck", "duck"},   {"jump", "jump"},  {"punch", "punch_right"},
+                                                             {"kick", "kick"}};
+  std::set<std::string> roles;
+  for (const std::string name : {"daz43", "cmu31"}) {
+    CAPTURE(name);
+    const MotionSet& set = manifest_set(name);
+    CHECK(set.skeleton->size() == (name == "daz43" ? 43 : 31));
+    std::set<std::string> listed;
+    for (const MotionClip& c : set.clips) {
+      CAPTURE(c.clip.name);
+      const std::string file = fs::path(c.source_file).filename().string();
+      listed.insert(file);
+      roles.insert(role_name(c.role));
+      CHECK(c.clip.skeleton == set.skeleton);
+      CHECK(c.clip.frame_count() > 10);
+      CHECK(c.contacts.size() == c.clip.frames.size());
+      // The role matches what the file is (the file names say it), except the deliberate extra entries.
+      if (c.clip.name != "turn_right_05_01" && c.clip.name != "punch_left_14_01") {
+        bool matched = false;
+        for (const auto& [prefix, role] : role_by_prefix)
+          if (file.rfind(prefix, 0) == 0) {
+            CHECK(std::string(role_name(c.role)) == role);
+            matched = true;
+          }
+        CHECK(matched);
+      }
+      if (is_locomotion(c.role)) {
+        CHECK(c.target_frame == -1);
+      } else {
+        CHECK(c.target_frame >= 0);
+        CHECK(c.target_frame < c.clip.frame_count());
+        CHECK_FALSE(c.cyclic);
+      }
+      if (c.cyclic) {
+        CHECK(c.loop_first >= 0);
+        CHECK(c.loop_last > c.loop_first);
+        CHECK(c.loop_last < c.clip.frame_count());
+      }
+    }
+    CHECK(listed == bvh_files_in(test::mocap() + "/" + name));
+  }
+  for (const char* r : {"idle", "walk", "turn_left", "turn_right", "crawl", "duck", "jump", "punch_left", "punch_right", "kick"})
+    CHECK(roles.count(r) == 1);
+}
+
+TEST_CASE("manifest frame ranges, T_t and loops count the file's frames") {
+  const MotionSet& daz = manifest_set("daz43");
+  // jump_forward_13_11: frames [28, 399], t_t 118 (skip_first_frame).
+  const MotionClip& jump = daz.clips[static_cast<size_t>(daz.find("jump_forward_13_11"))];
+  CHECK(jump.clip.frame_count() == 399 - 28 + 1);
+  CHECK(jump.target_frame == 118 - 28);
+  BvhReadOptions options;
+  options.unit_scale = 0.01f;
+  const Clip file = read_bvh(test::mocap() + "/daz43/jump_forward_13_11.bvh", options);
+  for (size_t j = 0; j < file.frames[28].rotations.size(); ++j)
+    CHECK(std::abs(glm::dot(jump.clip.frames[0].rotations[j], file.frames[28].rotations[j])) == doctest::Approx(1.0f));
+  // Horizontal root position untouched (same skeleton, no retargeting); height moved by the floor only.
+  CHECK(jump.clip.frames[0].root_position.x == file.frames[28].root_position.x);
+  CHECK(jump.clip.frames[0].root_position.z == file.frames[28].root_position.z);
+  const MotionClip& walk = daz.clips[static_cast<size_t>(daz.find("walk_02_01"))];
+  // The walk uses the file's frames 6-343 (frames 1-5 blend in from the reference pose).
+  CHECK(walk.clip.frame_count() == 343 - 6 + 1);
+  CHECK(walk.cyclic);
+  CHECK(walk.loop_first == 120 - 6);
+  CHECK(walk.loop_last == 250 - 6);
+  // Two clips from one file: the punch take holds a left jab and a right cross.
+  const MotionSet& cmu = manifest_set("cmu31");
+  const MotionClip& right = cmu.clips[static_cast<size_t>(cmu.find("punch_right_14_01"))];
+  const MotionClip& left = cmu.clips[static_cast<size_t>(cmu.find("punch_left_14_01"))];
+  CHECK(right.source_file == left.source_file);
+  CHECK(right.role == Role::PunchRight);
+  CHECK(left.role == Role::PunchLeft);
+  CHECK(right.target_frame == 20);
+  CHECK(left.target_frame == 9);
+  CHECK(left.clip.frame_count() == 20);
+}
+
+TEST_CASE("every loop range of the manifests is a close pose match") {
+  for (const std::string name : {"daz43", "cmu31"}) {
+    const MotionSet& set = manifest_set(name);
+    for (const MotionClip& c : set.clips) {
+      if (!c.cyclic) continue;
+      CAPTURE(c.clip.name);
+      // Playing loop_last then loop_first: the jump in pose there, against how different the poses half a
+      // loop apart are (for a gait cycle: the legs swapped). An arbitrary loop range joins at about that.
+      const double join = pose_distance(c.clip, c.loop_last, c.loop_first);
+      const int half = (c.loop_last - c.loop_first + 1) / 2;
+      std::vector<double> apart;
+      for (int f = c.loop_first; f + half <= c.loop_last; ++f) apart.push_back(pose_distance(c.clip, f, f + half));
+      std::sort(apart.begin(), apart.end());
+      const double half_loop = apart[apart.size() / 2];
+      CHECK(join < 0.045);  // metres RMS over the joints
+      if (c.role == Role::Walk) CHECK(join < 0.25 * half_loop);
+      if (c.role == Role::Idle) CHECK(join < 0.02);
+    }
+  }
+}
+
+TEST_CASE("clips of other performers play on the reference skeleton: rotations kept, root scaled by leg length") {
+  const MotionSet& cmu = manifest_set("cmu31");
+  const Skeleton& ref = *cmu.skeleton;
+  auto leg = [](const Skeleton& s) {
+    float sum = 0;
+    for (const char* j : {"LeftKnee", "LeftAnkle", "RightKnee", "RightAnkle"}) sum += glm::length(s.joints[static_cast<size_t>(s.find(j))].offset);
+    return sum / 2;
+  };
+  float largest_change = 0;
+  for (const MotionClip& c : cmu.clips) {
+    CAPTURE(c.clip.name);
+    BvhReadOptions options;
+    options.unit_scale = 0.05644f;
+    const Clip file = read_bvh(c.source_file, options);
+    const Skeleton& own = *file.skeleton;
+    const float ratio = leg(ref) / leg(own);
+    largest_change = std::max(largest_change, std::abs(ratio - 1.0f));
+    for (int f : {0, c.clip.frame_count() / 2, c.clip.frame_count() - 1}) {
+      const Pose& p = c.clip.frames[static_cast<size_t>(f)];
+      const Pose& q = file.frames[static_cast<size_t>(f)];  // every cmu31 range starts at the file's frame 0
+      for (int j = 0; j < ref.size(); ++j) {
+        const int k = own.find(ref.joints[static_cast<size_t>(j)].name);
+        CHECK(std::abs(glm::dot(p.rotations[static_cast<size_t>(j)], q.rotations[static_cast<size_t>(k)])) == doctest::Approx(1.0f));
+      }
+      CHECK(p.root_position.x == doctest::Approx(q.root_position.x * ratio));
+      CHECK(p.root_position.z == doctest::Approx(q.root_position.z * ratio));
+    }
+  }
+  // Subject 111 (the crawl) has legs about 11% shorter than subject 69 (the reference walk).
+  CHECK(largest_change > 0.1f);
+}
+
+TEST_CASE("the automatic floor puts the feet on y = 0 in every clip") {
+  for (const std::string name : {"daz43", "cmu31"}) {
+    const MotionSet& set = manifest_set(name);
+    for (const MotionClip& c : set.clips) {
+      CAPTURE(c.clip.name);
+      // Per frame the lowest heel/toe point; its 10th percentile over the clip is at the floor (the rule
+      // is applied per 1-second window, so over the whole clip it holds within a couple of cm).
+      std::vector<float> lowest;
+      std::vector<glm::vec3> p;
+      std::vector<glm::quat> r;
+      for (const Pose& pose : c.clip.frames) {
+        forward_kinematics(*set.skeleton, pose, p, &r);
+        const FootPoints feet = foot_points(*set.skeleton, set.body, p, r);
+        lowest.push_back(std::min({feet.heel[0].y, feet.heel[1].y, feet.toe[0].y, feet.toe[1].y}));
+      }
+      std::sort(lowest.begin(), lowest.end());
+      CHECK(std::abs(lowest[lowest.size() / 10]) < 0.02f);
+      CHECK(lowest.front() > -0.05f);
+    }
+  }
+}
+
+TEST_CASE("a number as floor moves the clip down by exactly that") {
+  const std::string clip = "{\"file\": \"walk_69_01.bvh\", \"role\": \"walk\"";
+  const MotionSet zero = load_motion_set(write_manifest("floor0.json", cmu31_manifest(clip + ", \"floor\": 0}")), Params{});
+  const MotionSet raised = load_motion_set(write_manifest("floor1.json", cmu31_manifest(clip + ", \"floor\": 0.25}")), Params{});
+  CHECK(zero.clips[0].clip.name == "walk_69_01");
+  for (int f : {0, 35, 69})
+    CHECK(raised.clips[0].clip.frames[static_cast<size_t>(f)].root_position.y ==
+          doctest::Approx(zero.clips[0].clip.frames[static_cast<size_t>(f)].root_position.y - 0.25f));
+}
+
+TEST_CASE("bad manifests give errors naming the manifest and the field") {
+  const std::string walk = "{\"file\": \"walk_69_01.bvh\", \"role\": \"walk\"}";
+  auto load = [](const std::string& file, const std::string& text) { return load_motion_set(write_manifest(file, text), Params{}); };
+  CHECK_THROWS_WITH_AS(load("bad_json.json", "{\n\"name\": \"x\",\n\"clips\": [\n}"), doctest::Contains("bad_json.json:4: invalid JSON"),
+                       InputError);
+  CHECK_THROWS_WITH_AS(load("unknown_field.json", cmu31_manifest(walk, ", \"speed\": 2")),
+                       doctest::Contains("unknown_field.json: speed: unknown field"), InputError);
+  CHECK_THROWS_WITH_AS(load("no_folder.json", "{\"clips\": [" + walk + "]}"), doctest::Contains("no_folder.json: folder: missing"),
+                       InputError);
+  CHECK_THROWS_WITH_AS(load("wrong_folder.json", "{\"folder\": \"nowhere\", \"clips\": [" + walk + "]}"),
+                       doctest::Contains("wrong_folder.json: folder: 'nowhere' holds no 'walk_69_01.bvh'"), InputError);
+  CHECK_THROWS_WITH_AS(load("no_clips.json", cmu31_manifest("")), doctest::Contains("no_clips.json: clips: must be a non-empty array"),
+                       InputError);
+  CHECK_THROWS_WITH_AS(load("units.json", cmu31_manifest(walk, ", \"unit_scale\": 0.05")),
+                       doctest::Contains("units.json: units: give either"), InputError);
+  CHECK_THROWS_WITH_AS(load("role.json", cmu31_manifest("{\"file\": \"walk_69_01.bvh\", \"role\": \"stroll\"}")),
+                       doctest::Contains("role.json: clips[0] (walk_69_01).role: unknown role 'stroll'"), InputError);
+  CHECK_THROWS_WITH_AS(load("no_tt.json", cmu31_manifest("{\"file\": \"duck_127_29.bvh\", \"role\": \"duck\"}")),
+                       doctest::Contains("no_tt.json: clips[0] (duck_127_29).t_t: missing"), InputError);
+  CHECK_THROWS_WITH_AS(load("tt_walk.json", cmu31_manifest("{\"file\": \"walk_69_01.bvh\", \"role\": \"walk\", \"t_t\": 3}")),
+                       doctest::Contains("tt_walk.json: clips[0] (walk_69_01).t_t: only target motions"), InputError);
+  CHECK_THROWS_WITH_AS(load("tt_out.json", cmu31_manifest("{\"file\": \"duck_127_29.bvh\", \"role\": \"duck\", \"frames\": [5, 40], \"t_t\": 2}")),
+                       doctest::Contains("tt_out.json: clips[0] (duck_127_29).t_t: 2 is outside the clip's frames [5, 40]"), InputError);
+  CHECK_THROWS_WITH_AS(load("frames.json", cmu31_manifest("{\"file\": \"walk_69_01.bvh\", \"role\": \"walk\", \"frames\": [0, 70]}")),
+                       doctest::Contains("frames.json: clips[0] (walk_69_01).frames: ends at frame 70"), InputError);
+  CHECK_THROWS_WITH_AS(load("frames2.json", cmu31_manifest("{\"file\": \"walk_69_01.bvh\", \"role\": \"walk\", \"frames\": [9, 3]}")),
+                       doctest::Contains("frames2.json: clips[0] (walk_69_01).frames: first (9) must be before last (3)"), InputError);
+  CHECK_THROWS_WITH_AS(load("loop.json", cmu31_manifest("{\"file\": \"walk_69_01.bvh\", \"role\": \"walk\", \"frames\": [10, 60], \"loop\": [5, 40]}")),
+                       doctest::Contains("loop.json: clips[0] (walk_69_01).loop: [5, 40] is outside"), InputError);
+  CHECK_THROWS_WITH_AS(load("loop_target.json", cmu31_manifest("{\"file\": \"duck_127_29.bvh\", \"role\": \"duck\", \"t_t\": 10, \"loop\": [1, 9]}")),
+                       doctest::Contains("loop_target.json: clips[0] (duck_127_29).loop: only locomotion clips loop"), InputError);
+  CHECK_THROWS_WITH_AS(load("dup.json", cmu31_manifest(walk + ", " + walk)), doctest::Contains("dup.json: clips[1] (walk_69_01).name: the name 'walk_69_01' repeats"),
+                       InputError);
+  CHECK_THROWS_WITH_AS(load("skip.json", cmu31_manifest("{\"file\": \"walk_69_01.bvh\", \"role\": \"walk\", \"frames\": [0, 9]}", ", \"skip_first_frame\": true")),
+                       doctest::Contains("skip.json: clips[0] (walk_69_01).frames: starts at frame 0"), InputError);
+  CHECK_THROWS_WITH_AS(load("floor.json", cmu31_manifest("{\"file\": \"walk_69_01.bvh\", \"role\": \"walk\", \"floor\": \"low\"}")),
+                       doctest::Contains("floor.json: clips[0] (walk_69_01).floor: must be \"auto\" or a height"), InputError);
+  CHECK_THROWS_WITH_AS(load("reference.json", cmu31_manifest(walk, ", \"reference\": \"other.bvh\"")),
+                       doctest::Contains("reference.json: reference: 'other.bvh' is not the file of any clip"), InputError);
+  // A clip file that is not there: the BVH reader names it.
+  CHECK_THROWS_WITH_AS(load("missing_bvh.json", cmu31_manifest(walk + ", {\"file\": \"gone.bvh\", \"role\": \"walk\"}")),
+                       doctest::Contains("cmu31/gone.bvh: cannot open"), InputError);
+  // A clip from another skeleton (daz43 joints into a cmu31 set).
+  CHECK_THROWS_WITH_AS(load("mixed.json", cmu31_manifest(walk + ", {\"file\": \"../daz43/walk_02_01.bvh\", \"role\": \"walk\"}")),
+                       doctest::Contains("mixed.json: clips[1] (walk_02_01).file: '../daz43/walk_02_01.bvh' has 43 joints"), InputError);
+}
