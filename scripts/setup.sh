@@ -22,6 +22,12 @@ if ((${#missing[@]})); then
   DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq "${missing[@]}" >/dev/null
 fi
 
+# The Khronos glTF-Validator (npm package, pinned by tools/gltf-validator/package-lock.json) for the tests.
+if command -v npm >/dev/null 2>&1 && [ ! -d "$here/tools/gltf-validator/node_modules/gltf-validator" ]; then
+  echo "prep: installing gltf-validator (npm ci)"
+  npm ci --prefix "$here/tools/gltf-validator" --no-audit --no-fund >/dev/null
+fi
+
 jobs="$(nproc 2>/dev/null || echo 2)"
 cmake -S "$here" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null
 cmake --build "$build" -j "$jobs"
