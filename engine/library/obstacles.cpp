@@ -1,0 +1,221 @@
+// duck (walk through under a beam ~1.2 m high) and crawl (on hands and knees under a bar ~0.65 m high).
+#include <algorithm>
+#include <cmath>
+
+#include "engine/library/action.h"
+#include "engine/library/builtin.h"
+#include "engine/library/rig.h"
+#include "engine/library/spline.h"
+#include "engine/motion/kinematics.h"
+
+namespace prep::library {
+namespace {
+constexpr float kDeg = 3.14159265f / 180.0f;
+
+// Highest body point (joints and end sites) with z in [z0, z1] over a clip.
+float highest_between(const Clip& clip, float z0, float z1) {
+  std::vector<glm::vec3> pos;
+  std::vector<glm::quat> rot;
+  float top = 0.0f;
+  for (const Pose& p : clip.frames) {
+    forward_kinematics(*clip.skeleton, p, pos, &rot);
+    for (int j = 0; j < clip.skeleton->size(); ++j) {
+      if (pos[static_cast<size_t>(j)].z >= z0 && pos[static_cast<size_t>(j)].z <= z1) top = std::max(top, pos[static_cast<size_t>(j)].y);
+    }
+  }
+  return top;
+}
+}  // namespace
+
+GeneratedClip make_duck(const std::string& name, Obstacle* beam) {
+  // Walking on at a moderate pace; the walk lowers into a crouch with the trunk bent forward, passes the
+  // beam, and rises again, without breaking step (the legs keep the gait and IK bends the knees).
+  const GaitStyle style = plan_gait(1.1f, 0.85f, kLibraryFps);
+  const Walker walker(style, 0.0f, {0.0f, 0.0f}, 0.0f);
+  const float T = style.cycle_s;
+  const float down_from = 0.3f * T, down_to = 1.2f * T, up_from = 2.7f * T, up_to = 3.6f * T;
+  const float t0 = -T, t1 = 4.6f * T;
+  const auto depth = [&](float t) { return smooth5((t - down_from) / (down_to - down_from)) - smooth5((t - up_from) / (up_to - up_from)); };
+  Draft draft;
+  draft.name = name;
+  draft.fps = style.fps;
+  const int count = static_cast<int>(std::lround((t1 - t0) * style.fps));
+  for (int f = 0; f < count; ++f) {
+    const float t = t0 + static_cast<float>(f) / style.fps;
+    DofPose d = walker.pose(t);
+    const float k = depth(t);
+    d[kRootY] -= 0.24f * k;
+    d[kSpineFlex] += 52 * kDeg * k;
+    d[kPelvisTilt] += 12 * kDeg * k;
+    d[kNeckFlex] -= 35 * kDeg * k;
+    d[kHeadFlex] -= 15 * kDeg * k;
+    for (int side = 0; side < 2; ++side) {
+      d.at(side, kHipFlex) += 35 * kDeg * k;
+      d.at(side, kKneeFlex) += 55 * kDeg * k;
+      d.at(side, kAnkleDorsi) += 15 * kDeg * k;
+      d.at(side, kShoulderFlex) += 15 * kDeg * k;
+      d.at(side, kElbowFlex) += 20 * kDeg * k;
+    }
+    draft.frames.push_back(d);
+  }
+  for (int side = 0; side < 2; ++side) draft.feet[static_cast<size_t>(side)] = walker.supports(side, t0, t1, t0);
+  GeneratedClip g;
+  g.clip = realize(draft, &g.report);
+  g.role = Role::Duck;
+  g.target_frame = static_cast<int>(std::lround((down_from - t0) * style.fps));
+  if (beam) {
+    // The beam is where the head is in the middle of the crouched passage, 0.2 m deep.
+    std::vector<glm::vec3> pos;
+    const int mid = static_cast<int>(std::lround((0.5f * (down_to + up_from) - t0) * style.fps));
+    forward_kinematics(*g.clip.skeleton, g.clip.frames[static_cast<size_t>(mid)], pos);
+    const float z = pos[kHead].z;
+    *beam = {z - 0.1f, z + 0.1f, 1.2f, 1.15f, false};
+  }
+  return g;
+}
+
+GeneratedClip make_crawl(const std::string& name, Obstacle* bar) {
+  ActionSpec spec;
+  spec.name = name;
+  spec.role = Role::Crawl;
+  spec.gait = plan_gait(1.1f, 0.85f, kLibraryFps);
+  const float T = spec.gait.cycle_s;
+  const float step = 0.5f * spec.gait.stride_m;
+  const Walker in = walk_in(spec);
+  const float feet_z = in.supports(1, 0.0f, 0.0f, 0.0f).back().anchor_xz.y;
+  // Timeline (s from the join): gather the feet, kneel and put the hands down, crawl, squat back onto
+  // the feet, stand, walk on.
+  const float kneel_from = 0.5f, hands_down = 1.3f, knees_down = 1.5f;
+  constexpr int kCycles = 4;
+  constexpr float kCrawlCycle = 1.1f;   // s per crawl cycle (each limb steps once)
+  constexpr float kCrawlStep = 0.30f;   // m per limb step
+  const float crawl_from = 1.7f, crawl_to = crawl_from + kCycles * kCrawlCycle;
+  const float feet_up = crawl_to + 0.1f, feet_land = crawl_to + 0.6f, hands_up = crawl_to + 0.8f, stand = crawl_to + 1.6f;
+  const float resume = stand + 0.5f;
+  spec.walk_in_s = T;
+  spec.target_time = kneel_from;
+  spec.resume_time = resume;
+  spec.resume_phase = 0.0f;
+  spec.walk_out_s = T;
+
+  // The crawling posture: trunk nearly horizontal, thighs vertical, shins on the floor, arms under the
+  // shoulders with elbows slightly bent, neck extended to look ahead.
+  const float root_crawl_y = 0.45f;
+  auto crawl_pose = [&](float z) {
+    DofPose d = standing_pose({0.0f, z}, root_crawl_y);
+    d[kPelvisTilt] = 72 * kDeg;
+    d[kSpineFlex] = 14 * kDeg;
+    d[kNeckFlex] = -40 * kDeg;
+    d[kHeadFlex] = -25 * kDeg;
+    for (int side = 0; side < 2; ++side) {
+      d.at(side, kHipFlex) = 75 * kDeg;
+      d.at(side, kKneeFlex) = 100 * kDeg;
+      d.at(side, kAnkleDorsi) = -40 * kDeg;
+      d.at(side, kShoulderFlex) = 80 * kDeg;
+      d.at(side, kShoulderAbduct) = 8 * kDeg;
+      d.at(side, kShoulderTwist) = 0.0f;
+      d.at(side, kElbowFlex) = 25 * kDeg;
+      d.at(side, kWristFlex) = -10 * kDeg;
+    }
+    return d;
+  };
+  const float root_start = feet_z + 0.25f;  // root z when the crawl starts
+  const float crawl_speed = kCrawlStep / kCrawlCycle;
+  const float root_end = root_start + crawl_speed * (crawl_to - crawl_from);
+  auto key = [&](float t, DofPose d) { spec.keys.push_back({t, d, false, {}}); };
+  // Gather the feet and slow down.
+  {
+    DofPose d = standing_pose({0.0f, feet_z - 0.02f}, 0.88f);
+    d[kSpineFlex] = 10 * kDeg;
+    key(kneel_from, d);
+  }
+  {  // Bend down, reaching for the floor.
+    DofPose d = standing_pose({0.0f, feet_z + 0.05f}, 0.62f);
+    d[kPelvisTilt] = 45 * kDeg;
+    d[kSpineFlex] = 20 * kDeg;
+    d[kNeckFlex] = -25 * kDeg;
+    for (int side = 0; side < 2; ++side) {
+      d.at(side, kHipFlex) = 90 * kDeg;
+      d.at(side, kKneeFlex) = 100 * kDeg;
+      d.at(side, kAnkleDorsi) = 20 * kDeg;
+      d.at(side, kShoulderFlex) = 70 * kDeg;
+      d.at(side, kElbowFlex) = 20 * kDeg;
+    }
+    key(hands_down - 0.1f, d);
+  }
+  key(knees_down, crawl_pose(root_start - 0.05f));
+  // Crawl: the trunk rolls and twists a little with the diagonal limb pairs.
+  for (int c = 0; c <= 2 * kCycles; ++c) {
+    const float t = crawl_from + 0.5f * kCrawlCycle * static_cast<float>(c);
+    DofPose d = crawl_pose(root_start + crawl_speed * (t - crawl_from));
+    const float s = (c % 2 == 0) ? 1.0f : -1.0f;
+    d[kPelvisRoll] = 3 * kDeg * s;
+    d[kSpineTwist] = -4 * kDeg * s;
+    key(t, d);
+  }
+  {  // Push back onto the feet: a deep squat with the hands still down.
+    DofPose d = standing_pose({0.0f, root_end - 0.1f}, 0.55f);
+    d[kPelvisTilt] = 40 * kDeg;
+    d[kSpineFlex] = 35 * kDeg;
+    d[kNeckFlex] = -30 * kDeg;
+    for (int side = 0; side < 2; ++side) {
+      d.at(side, kHipFlex) = 100 * kDeg;
+      d.at(side, kKneeFlex) = 125 * kDeg;
+      d.at(side, kAnkleDorsi) = 25 * kDeg;
+      d.at(side, kShoulderFlex) = 75 * kDeg;
+      d.at(side, kElbowFlex) = 15 * kDeg;
+    }
+    key(feet_land + 0.1f, d);
+  }
+  {  // Stand.
+    DofPose d = standing_pose({0.0f, root_end}, 0.90f);
+    d[kSpineFlex] = 4 * kDeg;
+    key(stand, d);
+  }
+  const float foot_end_z = root_end - 0.02f;
+  spec.resume_origin = {0.0f, foot_end_z + step - (feet_z - 0.0f)};
+
+  // Feet: walk-in stance, standing, then on the toes with the shins down, crawling, squatting, standing.
+  const float shin = anthropometry::kShank;
+  for (int side = 0; side < 2; ++side) {
+    const float x = side_sign(side) * 0.11f;
+    auto& feet = spec.feet[static_cast<size_t>(side)];
+    if (side == 1) feet.push_back({0.0f, hands_down, Hold::RollingFoot, false, {}, 0.0f, 0.0f});
+    else feet.push_back({0.45f, hands_down, Hold::RollingFoot, true, {x, feet_z}, 0.05f, 0.06f});
+    // On all fours the ankle is a shin's length behind the knee, the knee under the hip.
+    const float knee_lead = side == 0 ? 0.0f : 0.5f;  // the left knee steps with the right hand
+    float z = root_start - shin + 0.02f;
+    float on = knees_down;
+    for (int c = 0; c < kCycles; ++c) {
+      const float swing_start = crawl_from + (static_cast<float>(c) + knee_lead) * kCrawlCycle;
+      feet.push_back({on, swing_start, Hold::RigidFoot, true, {x, z}, 0.0f, 0.04f});
+      on = swing_start + 0.4f * kCrawlCycle;
+      z += kCrawlStep;
+    }
+    feet.push_back({on, feet_up, Hold::RigidFoot, true, {x, z}, 0.0f, 0.04f});
+    if (side == 1) feet.push_back({feet_land, resume - 0.35f, Hold::RollingFoot, true, {x, foot_end_z}, 0.0f, 0.08f});
+    else feet.push_back({feet_land, resume + 0.12f * T, Hold::RollingFoot, true, {x, foot_end_z}, 0.0f, 0.08f});
+    // Hands: under the shoulders.
+    auto& hands = spec.hands[static_cast<size_t>(side)];
+    const float hand_lead = side == 1 ? 0.0f : 0.5f;  // the right hand steps first
+    float hz = root_start + 0.52f;
+    float hon = hands_down;
+    for (int c = 0; c < kCycles; ++c) {
+      const float swing_start = crawl_from + (static_cast<float>(c) + hand_lead) * kCrawlCycle;
+      hands.push_back({hon, swing_start, Hold::PalmDown, true, {side_sign(side) * 0.17f, hz}, 0.0f, 0.05f});
+      hon = swing_start + 0.4f * kCrawlCycle;
+      hz += kCrawlStep;
+    }
+    hands.push_back({hon, hands_up, Hold::PalmDown, true, {side_sign(side) * 0.17f, hz}, 0.0f, 0.05f});
+  }
+  GeneratedClip g = compose_action(spec);
+  if (bar) {
+    // The bar is where the shoulders are halfway through the crawl; the whole body passes under it.
+    const float z = root_start + 0.45f + crawl_speed * 0.5f * (crawl_to - crawl_from);
+    *bar = {z - 0.05f, z + 0.05f, 0.65f, 0.6f, false};
+    (void)highest_between;
+  }
+  return g;
+}
+
+}  // namespace prep::library
