@@ -1,0 +1,91 @@
+// Sec. 4.1: the hierarchical motion graph. Core nodes are the locomotion clips (idle, walk, turns,
+// side-steps); target motions (crawl, duck, jump, punches, kick) hang off them: an edge enters a target
+// from a core node before its target movement (T_t) and leaves it back to a core node after it. Core
+// nodes join each other. Edges are where the switch is kinematically smooth: Kovar et al.'s point-cloud
+// distance over a short window of frames, after the best rigid alignment on the floor plane, at local
+// minima under GraphParams::threshold.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "engine/motion/motion_set.h"
+#include "engine/params/params.h"
+
+namespace prep {
+
+// A rigid motion of the floor plane: rotation by `angle` about +Y, then translation by (x, z).
+struct FloorTransform {
+  float angle = 0.0f;
+  glm::vec2 offset{0.0f};  // (x, z)
+
+  glm::vec3 apply(glm::vec3 p) const;        // a point
+  glm::quat rotation() const;                 // the rotation, to pre-multiply root rotations by
+  FloorTransform then(const FloorTransform& outer) const;  // outer ∘ this
+  static FloorTransform identity() { return {}; }
+};
+
+struct GraphNode {
+  int clip = -1;       // index into MotionSet::clips (node i is clip i)
+  std::string name;
+  Role role = Role::Walk;
+  bool core = false;   // locomotion
+};
+
+struct GraphEdge {
+  int from = -1, to = -1;   // nodes
+  int from_frame = 0;       // leave `from` here: the blend plays from[from_frame ..] against to[to_frame ..]
+  int to_frame = 0;
+  float distance = 0.0f;    // point-cloud distance over the window (m, RMS over points and frames)
+  bool loop = false;        // the cyclic clip's own loop (loop_last + 1 -> loop_first)
+  bool forced = false;      // the best candidate, kept above the threshold so that a target stays reachable
+  int blend_frames = 0;     // frames of the cross-fade (blend_s; longer for forced edges, in proportion)
+  FloorTransform align;     // maps `to`'s clip coordinates onto `from`'s at the transition
+};
+
+class MotionGraph {
+ public:
+  // Builds the graph of a finalized motion set. The set must outlive the graph (it is referred to).
+  static MotionGraph build(const MotionSet& set, const GraphParams& params);
+
+  const std::vector<GraphNode>& nodes() const { return nodes_; }
+  const std::vector<GraphEdge>& edges() const { return edges_; }
+  int find(const std::string& name) const;  // node index or -1
+
+  // Next(m): the motions that may follow m (sorted node indices; m itself when m loops).
+  const std::vector<int>& next(int node) const { return next_[static_cast<size_t>(node)]; }
+  // Edges leaving `node` (indices into edges()).
+  const std::vector<int>& out_edges(int node) const { return out_[static_cast<size_t>(node)]; }
+
+  // The floor-plane alignment that maps clip b's frames [j, j+n) onto clip a's frames [i, i+n) (Kovar's
+  // closed form over the point clouds), with n shrunk to what both clips hold (at least one frame).
+  FloorTransform align(int a, int i, int b, int j, int n) const;
+  // The floor-plane alignment that puts clip b's root at frame j on clip a's root at frame i, facing
+  // the same way (facing from the hip joints). Used for edges whose poses differ too much to align well.
+  FloorTransform align_roots(int a, int i, int b, int j) const;
+  // Distance (m, RMS) of the same windows after the point-cloud alignment.
+  float distance(int a, int i, int b, int j, int n) const;
+
+  float build_seconds() const { return build_seconds_; }
+  int candidate_pairs() const { return candidate_pairs_; }  // frame pairs compared while building
+  int window_frames() const { return window_frames_; }      // the distance window, in clip frames
+  const MotionSet& set() const { return *set_; }
+
+  // Graphviz text: core nodes as boxes, targets as ellipses, one arrow per (from, to) with its edge count.
+  std::string to_dot() const;
+
+ private:
+  const MotionSet* set_ = nullptr;
+  std::vector<GraphNode> nodes_;
+  std::vector<GraphEdge> edges_;
+  std::vector<std::vector<int>> next_, out_;
+  // Point clouds: clouds_[clip][frame * points_ + k], positions of the tracked joints in the clip's space.
+  std::vector<std::vector<glm::vec3>> clouds_;
+  int points_ = 0;
+  int hip_points_[2] = {0, 0};  // where the left and right hip joints are in each frame's cloud
+  int window_frames_ = 1;
+  int candidate_pairs_ = 0;
+  float build_seconds_ = 0.0f;
+};
+
+}  // namespace prep

@@ -1,0 +1,184 @@
+#include "engine/graph/player.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace prep {
+
+Player::Player(const MotionGraph& graph) : graph_(&graph) {
+  if (!graph.set().clips.empty()) fps_ = graph.set().clips.front().clip.fps;
+}
+
+int Player::natural_last(const Segment& s) const {
+  const MotionClip& mc = graph_->set().clips[static_cast<size_t>(s.node)];
+  if (mc.cyclic && s.first <= mc.loop_last) return mc.loop_last;
+  return std::max(s.first, mc.clip.frame_count() - 1);
+}
+
+int Player::earliest_exit(const Segment& s) const { return s.first + std::max(1, s.blend); }
+
+void Player::start(int node, int frame, FloorTransform place) {
+  if (node < 0 || node >= static_cast<int>(graph_->nodes().size()))
+    throw std::invalid_argument("player: no motion " + std::to_string(node));
+  const MotionClip& mc = graph_->set().clips[static_cast<size_t>(node)];
+  if (mc.clip.frame_count() == 0) throw std::invalid_argument("player: motion '" + mc.clip.name + "' has no frames");
+  Segment s;
+  s.node = node;
+  s.first = frame >= 0 ? std::min(frame, mc.clip.frame_count() - 1) : (mc.cyclic ? mc.loop_first : 0);
+  s.place = place;
+  s.last = natural_last(s);
+  segments_.assign(1, s);
+  switches_.clear();
+}
+
+int Player::choose_edge(const Segment& s, const PlayerAction& action, bool* wrap_first) const {
+  const MotionClip& mc = graph_->set().clips[static_cast<size_t>(s.node)];
+  const bool loops = mc.cyclic && s.first <= mc.loop_last;
+  const int earliest = earliest_exit(s);
+  int loop_edge = -1;
+  for (int k : graph_->out_edges(s.node))
+    if (graph_->edges()[static_cast<size_t>(k)].loop) loop_edge = k;
+  // Frames from the earliest exit to loop_last, then from the wrapped segment's earliest exit.
+  const int wrapped_earliest =
+      loop_edge >= 0 ? mc.loop_first + std::max(1, graph_->edges()[static_cast<size_t>(loop_edge)].blend_frames) : 0;
+
+  int best = -1;
+  bool best_wrap = false;
+  long best_miss = std::numeric_limits<long>::max(), best_cost = std::numeric_limits<long>::max();
+  for (int k : graph_->out_edges(s.node)) {
+    const GraphEdge& e = graph_->edges()[static_cast<size_t>(k)];
+    if (e.to != action.node) continue;
+    long cost = -1;
+    bool wrap = false;
+    if (e.loop) {
+      if (loops && earliest <= e.from_frame) cost = e.from_frame - earliest;
+    } else if (e.from_frame >= earliest && e.from_frame <= s.last) {
+      cost = e.from_frame - earliest;
+    } else if (loops && loop_edge >= 0 && e.from_frame >= wrapped_earliest && e.from_frame <= mc.loop_last) {
+      cost = (mc.loop_last + 1 - earliest) + (e.from_frame - mc.loop_first);
+      wrap = true;
+    }
+    if (cost < 0) continue;
+    const long miss = action.enter_frame >= 0 ? std::labs(static_cast<long>(e.to_frame - action.enter_frame)) : 0;
+    if (miss < best_miss || (miss == best_miss && cost < best_cost)) {
+      best = k;
+      best_wrap = wrap;
+      best_miss = miss;
+      best_cost = cost;
+    }
+  }
+  if (wrap_first) *wrap_first = best_wrap;
+  return best;
+}
+
+void Player::follow(int edge) {
+  const GraphEdge& e = graph_->edges()[static_cast<size_t>(edge)];
+  Segment& cur = segments_.back();
+  cur.last = e.from_frame - 1;
+  Segment next;
+  next.node = e.to;
+  next.first = e.to_frame;
+  next.stream_first = cur.stream_first + (cur.last - cur.first + 1);
+  next.place = e.align.then(cur.place);  // the next clip -> the current clip's coordinates -> world
+  next.blend = e.blend_frames;
+  next.blend_from = e.from_frame;
+  next.last = natural_last(next);
+  // Each joint's cross-fade takes the shorter arc as it stands at the switch and keeps that arc for the
+  // whole blend: choosing it anew each frame would jump to the other arc when two rotations about half
+  // a turn apart (a crawling leg against a walking one) cross the quarter-turn mark.
+  Pose a, b;
+  pose_of(cur, e.from_frame, a);
+  pose_of(next, next.first, b);
+  next.blend_sign.resize(a.rotations.size());
+  for (size_t j = 0; j < a.rotations.size(); ++j) next.blend_sign[j] = glm::dot(a.rotations[j], b.rotations[j]) < 0.0f ? -1.0f : 1.0f;
+  switches_.push_back({next.stream_first, next.blend, edge});
+  segments_.push_back(std::move(next));
+}
+
+void Player::push(const PlayerAction& action) {
+  if (segments_.empty()) {
+    start(action.node, action.enter_frame);
+    return;
+  }
+  bool wrap = false;
+  const int edge = choose_edge(segments_.back(), action, &wrap);
+  if (edge < 0) {
+    const auto& nodes = graph_->nodes();
+    const std::string to = action.node >= 0 && action.node < static_cast<int>(nodes.size()) ? nodes[static_cast<size_t>(action.node)].name
+                                                                                            : std::to_string(action.node);
+    throw std::invalid_argument("player: '" + to + "' cannot follow '" + nodes[static_cast<size_t>(current_node())].name +
+                                "' from frame " + std::to_string(segments_.back().first));
+  }
+  if (wrap) {
+    for (int k : graph_->out_edges(current_node()))
+      if (graph_->edges()[static_cast<size_t>(k)].loop) {
+        follow(k);
+        break;
+      }
+  }
+  follow(edge);
+}
+
+std::vector<int> Player::available() const {
+  std::vector<int> out;
+  if (segments_.empty()) return out;
+  for (int n : graph_->next(current_node()))
+    if (choose_edge(segments_.back(), PlayerAction{n, -1}, nullptr) >= 0) out.push_back(n);
+  return out;
+}
+
+int Player::current_node() const { return segments_.empty() ? -1 : segments_.back().node; }
+
+int Player::frame_count() const {
+  if (segments_.empty()) return 0;
+  const Segment& s = segments_.back();
+  return s.stream_first + (s.last - s.first + 1);
+}
+
+float Player::duration() const { return frame_count() > 0 ? static_cast<float>(frame_count() - 1) / fps_ : 0.0f; }
+
+void Player::pose_of(const Segment& s, int clip_frame, Pose& out) const {
+  const Clip& clip = graph_->set().clips[static_cast<size_t>(s.node)].clip;
+  out = clip.frames[static_cast<size_t>(std::clamp(clip_frame, 0, clip.frame_count() - 1))];
+  out.root_position = s.place.apply(out.root_position);
+  out.rotations[0] = glm::normalize(s.place.rotation() * out.rotations[0]);
+}
+
+void Player::pose_at(int frame, Pose& out) const {
+  if (segments_.empty()) {
+    out = Pose();
+    return;
+  }
+  frame = std::clamp(frame, 0, frame_count() - 1);
+  const auto it = std::upper_bound(segments_.begin(), segments_.end(), frame,
+                                   [](int f, const Segment& s) { return f < s.stream_first; });
+  const size_t index = static_cast<size_t>(it - segments_.begin()) - 1;
+  const Segment& s = segments_[index];
+  const int d = frame - s.stream_first;
+  pose_of(s, s.first + d, out);
+  if (d < s.blend && index > 0) {
+    // Cross-fade: the previous clip keeps playing past the switch while the next one fades in along a
+    // smoothstep, so both positions and velocities carry over.
+    thread_local Pose previous;
+    pose_of(segments_[index - 1], s.blend_from + d, previous);
+    const float x = static_cast<float>(d + 1) / static_cast<float>(s.blend + 1);
+    const float w = x * x * (3.0f - 2.0f * x);
+    out.root_position = previous.root_position + (out.root_position - previous.root_position) * w;
+    for (size_t j = 0; j < out.rotations.size(); ++j)  // glm::mix: slerp along the arc the signs give
+      out.rotations[j] = glm::normalize(glm::mix(previous.rotations[j], out.rotations[j] * s.blend_sign[j], w));
+  }
+}
+
+void Player::sample(float t, Pose& out) const {
+  const float f = std::max(0.0f, t * fps_);
+  const int i0 = static_cast<int>(std::floor(f));
+  thread_local Pose a, b;
+  pose_at(i0, a);
+  pose_at(i0 + 1, b);
+  interpolate(a, b, f - static_cast<float>(i0), out);
+}
+
+}  // namespace prep

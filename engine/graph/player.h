@@ -1,0 +1,78 @@
+// Plays a sequence of actions through the motion graph as one continuous stream of poses with root motion,
+// at the clip frame rate, sampled at any time. Each action plays a motion of Next(current); the switch
+// follows a graph edge: the next clip is aligned on the floor plane to where the current one is (so root
+// position and facing carry on), and the two cross-fade over the edge's blend so that no joint pops.
+// Cyclic clips loop over their loop range, root motion accumulating from one cycle to the next.
+#pragma once
+
+#include <vector>
+
+#include "engine/graph/motion_graph.h"
+
+namespace prep {
+
+struct PlayerAction {
+  int node = -1;         // the motion to play next
+  int enter_frame = -1;  // where to enter it (a frame of its clip): the edge entering nearest there is
+                         // taken; -1: the edge reached soonest
+};
+
+class Player {
+ public:
+  // The graph (and its motion set) must outlive the player.
+  explicit Player(const MotionGraph& graph);
+
+  // Starts a new stream at `node`, at `frame` (-1: its loop start, or frame 0), placed on the floor by
+  // `place` (applied to the clip's own coordinates).
+  void start(int node, int frame = -1, FloorTransform place = {});
+
+  // Appends an action. Throws std::invalid_argument when the motion cannot follow from where the stream
+  // is (not in Next(current), or, in a clip that plays once, no edge left ahead).
+  void push(const PlayerAction& action);
+  void push(int node) { push(PlayerAction{node, -1}); }
+  // The motions push() would accept now: Next(current) minus those whose edges all lie behind.
+  std::vector<int> available() const;
+
+  int current_node() const;
+  // Frames in the stream: through the natural end of the last action (its loop end for a cyclic clip).
+  int frame_count() const;
+  float fps() const { return fps_; }
+  float duration() const;
+
+  // The pose at stream frame `frame` (clamped), in world space, and at time t (seconds, interpolated).
+  void pose_at(int frame, Pose& out) const;
+  void sample(float t, Pose& out) const;
+
+  // Stream frames where a switch starts and how long its blend lasts (for tests and displays).
+  struct Switch {
+    int stream_frame = 0;
+    int blend_frames = 0;
+    int edge = -1;  // index into the graph's edges
+  };
+  const std::vector<Switch>& switches() const { return switches_; }
+
+ private:
+  struct Segment {
+    int node = -1;
+    int first = 0;          // clip frames first..last are played
+    int last = 0;           // for the open (last) segment: its natural end
+    int stream_first = 0;   // stream frame of `first`
+    FloorTransform place;   // clip coordinates -> world
+    int blend = 0;          // frames at the start cross-faded with the previous clip ...
+    int blend_from = 0;     // ... whose frames blend_from, blend_from + 1, ... keep playing meanwhile
+    std::vector<float> blend_sign;  // per joint: +-1 so that each rotation's path is fixed at the switch
+  };
+  int natural_last(const Segment& s) const;
+  int earliest_exit(const Segment& s) const;
+  // The edge to take from the open segment to `action`, and whether a loop wrap comes first; -1 if none.
+  int choose_edge(const Segment& s, const PlayerAction& action, bool* wrap_first) const;
+  void follow(int edge);
+  void pose_of(const Segment& s, int clip_frame, Pose& out) const;
+
+  const MotionGraph* graph_;
+  float fps_ = 30.0f;
+  std::vector<Segment> segments_;
+  std::vector<Switch> switches_;
+};
+
+}  // namespace prep
