@@ -36,7 +36,7 @@ template <class F> void fields(QuantizationParams& p, F&& f) {
   f("d_step", p.d_step); f("d_g_bins", p.d_g_bins); f("d_i_bins", p.d_i_bins);
   f("theta_g_step_deg", p.theta_g_step_deg); f("theta_g_bins", p.theta_g_bins);
   f("theta_i_step_deg", p.theta_i_step_deg); f("theta_i_bins", p.theta_i_bins);
-  f("alpha_step", p.alpha_step); f("alpha_levels", p.alpha_levels);
+  f("alpha_step", p.alpha_step); f("alpha_levels", p.alpha_levels); f("core_roles", p.core_roles);
 }
 template <class F> void fields(RewardParams& p, F&& f) {
   f("theta_norm_deg", p.theta_norm_deg); f("d_norm", p.d_norm); f("C_alpha", p.C_alpha);
@@ -48,6 +48,7 @@ template <class F> void fields(SarsaParams& p, F&& f) {
   f("convergence_fraction", p.convergence_fraction); f("convergence_episodes", p.convergence_episodes);
   f("update_tolerance", p.update_tolerance); f("seed", p.seed); f("max_steps", p.max_steps);
   f("threads", p.threads); f("max_episode_steps", p.max_episode_steps);
+  f("source_at_goal_fraction", p.source_at_goal_fraction);
 }
 template <class F> void fields(RuntimeParams& p, F&& f) {
   f("alpha_sigma_s", p.alpha_sigma_s); f("fixed_dt", p.fixed_dt);
@@ -128,6 +129,7 @@ std::uint64_t policy_params_hash(const Params& params) {
   json sarsa = section_to_json(copy.sarsa);
   sarsa.erase("threads");    // the thread count changes the run, not what the policy means
   sarsa.erase("max_steps");
+  sarsa.erase("seed");       // another seed trains the same problem: its policy is as valid
   j["sarsa"] = sarsa;
   j["C_lower"] = copy.blend.C_lower;
   j["method"] = copy.blend.method;

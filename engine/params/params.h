@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <vector>
 
 namespace prep {
 
@@ -81,6 +82,9 @@ struct QuantizationParams {
   int theta_i_bins = 4;
   float alpha_step = 0.2f;
   int alpha_levels = 6;           // 0, 0.2, ..., 1.0: 6 levels give the paper's 19,200 states (Table I prints 5)
+  // The graph's core locomotion nodes the controller plays (the m of Eq. 11-12; the paper has four).
+  // Walking forward, turning both ways and standing let the character face, approach and wait.
+  std::vector<std::string> core_roles{"walk", "turn_left", "turn_right", "idle"};
 };
 
 // Sec. 6.2: reward, Eq. 14-17.
@@ -92,7 +96,10 @@ struct RewardParams {
   float w_d = 0.3f;
   float w_alpha = 0.6f;
   float goal_radius = 0.4f;       // m: the goal counts as reached within this distance
-  float source_radius = 0.4f;     // m: alpha is forced to 1 within this distance of the source (Eq. 13)
+  // m: entering this radius of the source is "reaching" it: alpha is forced to 1 once (Eq. 13). Not the
+  // goal's 0.4 m: the learner looks only a few footsteps ahead, so a forcing at arrival teaches a
+  // last-moment jump; at 1 m (the reach of a kick or a punch) preparation is under way on arrival.
+  float source_radius = 1.0f;
 };
 
 // Sec. 6.3-6.4: SARSA, Eq. 18-19.
@@ -107,6 +114,9 @@ struct SarsaParams {
   std::int64_t max_steps = 200000000;
   int threads = 2;
   int max_episode_steps = 200;
+  // Sec. 6.1: goal and source are "usually identical"; this fraction of the training episodes puts the
+  // source on the goal, the rest place it independently (Fig. 9), so both kinds of state are explored.
+  float source_at_goal_fraction = 0.5f;
 };
 
 // Sec. 6 at run time and the simulation loop.

@@ -1,0 +1,96 @@
+#include "engine/control/controller.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include <algorithm>
+
+namespace prep {
+
+AlphaFilter::AlphaFilter(float sigma_s, float dt) {
+  if (!(sigma_s >= 0.0f) || !(dt > 0.0f)) throw std::invalid_argument("alpha filter: sigma must be >= 0 and dt > 0");
+  const int k_max = sigma_s > 0.0f ? static_cast<int>(std::ceil(3.0f * sigma_s / dt)) : 0;
+  weights_.resize(static_cast<size_t>(k_max + 1));
+  for (int k = 0; k <= k_max; ++k) {
+    const float t = static_cast<float>(k) * dt;
+    weights_[static_cast<size_t>(k)] = sigma_s > 0.0f ? std::exp(-t * t / (2.0f * sigma_s * sigma_s)) : 1.0f;
+  }
+  history_.assign(weights_.size(), 0.0f);
+}
+
+void AlphaFilter::reset(float alpha) {
+  std::fill(history_.begin(), history_.end(), alpha);
+  count_ = static_cast<int>(history_.size());
+  value_ = alpha;
+}
+
+float AlphaFilter::push(float alpha) {
+  const int n = static_cast<int>(history_.size());
+  head_ = (head_ + 1) % n;
+  history_[static_cast<size_t>(head_)] = alpha;
+  if (count_ < n) ++count_;
+  float sum = 0.0f, weight = 0.0f;
+  for (int k = 0; k < count_; ++k) {
+    const int i = (head_ - k + n) % n;
+    sum += weights_[static_cast<size_t>(k)] * history_[static_cast<size_t>(i)];
+    weight += weights_[static_cast<size_t>(k)];
+  }
+  value_ = sum / weight;
+  return value_;
+}
+
+Controller::Controller(std::shared_ptr<const Policy> policy, const Params& params)
+    : policy_(std::move(policy)),
+      states_(policy_->state_space()),
+      actions_(policy_->action_space()),
+      filter_(params.runtime.alpha_sigma_s, params.runtime.fixed_dt),
+      goal_radius_(params.reward.goal_radius) {
+  filter_.reset(0.0f);
+}
+
+void Controller::reset(int motion, int alpha_level) {
+  motion_ = motion;
+  alpha_level_ = alpha_level;
+  filter_.reset(alpha_of_level(alpha_level));
+}
+
+ControlDecision Controller::decide(const ControlInput& in) {
+  const Situation s = make_situation(in.position, in.heading, in.goal, in.source, alpha_level_, motion_);
+  StateBins b;
+  b.alpha = alpha_level_;
+  b.motion = motion_;
+  b.d_g = states_.d_g_bin(s.d_g);
+  b.theta_g = states_.theta_g_bin(s.theta_g);
+  b.d_i = states_.d_i_bin(s.d_i);
+  b.theta_i = states_.theta_i_bin(s.theta_i);
+  ControlDecision d;
+  d.state = states_.index(b);
+  d.at_goal = s.d_g < goal_radius_;
+  // Greedy over the actions Next(last motion) allows (lowest index on ties, as in training).
+  const std::uint64_t allowed = actions_.allowed_mask(motion_);
+  const float* row = policy_->row(d.state);
+  int best = -1;
+  for (int a = 0; a < actions_.size(); ++a)
+    if ((allowed >> a & 1u) && (best < 0 || row[a] > row[best])) best = a;
+  d.action = best;
+  const Action a = actions_.decode(best);
+  d.motion = a.motion;
+  d.alpha_level = a.alpha_level;
+  d.alpha = alpha_of_level(a.alpha_level);
+  motion_ = a.motion;
+  alpha_level_ = a.alpha_level;  // Eq. 13
+  return d;
+}
+
+void ControllerBank::add(std::shared_ptr<const Policy> policy) {
+  if (for_curve(policy->table.curve)) throw std::invalid_argument("controller bank: a policy for this lower-body curve is already held");
+  policies_.push_back(std::move(policy));
+}
+
+std::shared_ptr<const Policy> ControllerBank::for_curve(const RootCurve& curve) const {
+  for (const auto& p : policies_)
+    if (p->table.curve == curve) return p;
+  return nullptr;
+}
+
+}  // namespace prep

@@ -1,0 +1,105 @@
+// The behaviour controller at run time (Sec. 6.1 end, Sec. 8).
+//
+// Each control step (when the character may switch motion: at the end of a footstep) the controller
+// quantizes the situation (Eq. 11) and takes the greedy action a = {m, alpha} of its policy; the chosen
+// alpha becomes the state's alpha (Eq. 13). Discrete alpha levels would give discrete behaviour, so the
+// alpha that reaches synthesis passes a Gaussian filter over time.
+//
+// The filter is causal (it only knows the past): each engine tick it records the alpha chosen last, and
+// outputs the Gaussian-weighted mean of the recorded history, weight exp(-(k dt)^2 / (2 sigma^2)) for the
+// sample k ticks ago, k = 0 .. ceil(3 sigma / dt) (sigma = RuntimeParams::alpha_sigma_s). That is the right
+// half of a Gaussian kernel: a step in the chosen alpha comes out as a smooth rise following
+// erf(t / (sigma sqrt 2)), reaching 68% after sigma and 99.7% after 3 sigma. Until the history is full
+// the weights of the samples seen so far are renormalised (the first output is the first chosen alpha).
+//
+// Sec. 8: a policy serves every target motion whose lower-body (root) blend curve is the one it was
+// trained with, because that curve alone shapes the stride (Eq. 3-4); a ControllerBank keeps one policy per
+// curve and hands out the one for a target's curve.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/vec2.hpp>
+
+#include "engine/control/environment.h"
+#include "engine/control/policy.h"
+#include "engine/params/params.h"
+
+namespace prep {
+
+class AlphaFilter {
+ public:
+  AlphaFilter(float sigma_s, float dt);
+  void reset(float alpha);     // history filled with alpha
+  float push(float alpha);     // records one tick's chosen alpha, returns the filtered alpha
+  float value() const { return value_; }
+  int taps() const { return static_cast<int>(weights_.size()); }
+
+ private:
+  std::vector<float> weights_;  // [k] for the sample k ticks ago
+  std::vector<float> history_;  // ring buffer
+  int head_ = 0, count_ = 0;
+  float value_ = 0.0f;
+};
+
+// Where things are on the floor, in world coordinates (x, z).
+struct ControlInput {
+  glm::vec2 position{0.0f};
+  float heading = 0.0f;  // the character faces (sin h, 0, cos h)
+  glm::vec2 goal{0.0f};
+  glm::vec2 source{0.0f};
+};
+
+struct ControlDecision {
+  int action = 0;
+  int motion = 0;         // index into the policy's core motions
+  int alpha_level = 0;
+  float alpha = 0.0f;     // the chosen (unfiltered) level
+  int state = 0;          // the quantized state it was chosen in
+  bool at_goal = false;   // the goal is within the goal radius: nothing left to approach
+};
+
+class Controller {
+ public:
+  Controller(std::shared_ptr<const Policy> policy, const Params& params);
+
+  // The greedy action in the current situation; updates the state's alpha (Eq. 13) and last motion.
+  ControlDecision decide(const ControlInput& in);
+  // One engine tick (RuntimeParams::fixed_dt): the filtered alpha for synthesis.
+  float tick() { return filter_.push(alpha_of_level(alpha_level_)); }
+  float filtered_alpha() const { return filter_.value(); }
+
+  void reset(int motion, int alpha_level);
+  int motion() const { return motion_; }
+  int alpha_level() const { return alpha_level_; }
+  float alpha_of_level(int level) const { return states_.alpha_of(level); }
+  const Policy& policy() const { return *policy_; }
+  const ActionEffect& effect(int action) const { return policy_->table.at(action); }
+  const std::string& motion_role(int motion) const { return policy_->table.motion_roles[static_cast<size_t>(motion)]; }
+  const std::string& motion_name(int motion) const { return policy_->table.motion_names[static_cast<size_t>(motion)]; }
+
+ private:
+  std::shared_ptr<const Policy> policy_;
+  StateSpace states_;
+  ActionSpace actions_;
+  AlphaFilter filter_;
+  float goal_radius_;
+  int motion_ = 0, alpha_level_ = 0;
+};
+
+// One policy per lower-body blend curve (Sec. 8).
+class ControllerBank {
+ public:
+  // Throws std::invalid_argument if a policy for the same curve is already held.
+  void add(std::shared_ptr<const Policy> policy);
+  // The policy for a target whose root curve is `curve`; nullptr if none was trained for it.
+  std::shared_ptr<const Policy> for_curve(const RootCurve& curve) const;
+  size_t size() const { return policies_.size(); }
+
+ private:
+  std::vector<std::shared_ptr<const Policy>> policies_;
+};
+
+}  // namespace prep

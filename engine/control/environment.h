@@ -1,0 +1,120 @@
+// The training environment of Sec. 6: a character on the floor plane, a goal and a source of influence
+// (separate, Fig. 9; often the same point). Lean by design, it runs tens of millions of steps a second:
+// the character's own frame is the simulation frame (goal and source are kept relative to the character,
+// so an action is one translation and one rotation by its precomputed cos/sin), angles come from a small
+// polynomial atan2, the reward's power terms are tabulated, and nothing allocates after construction.
+#pragma once
+
+#include <cmath>
+
+#include <glm/vec2.hpp>
+
+#include "engine/control/action_effects.h"
+#include "engine/control/actions.h"
+#include "engine/control/random.h"
+#include "engine/control/reward.h"
+#include "engine/control/state.h"
+
+namespace prep {
+
+// atan2 from a polynomial for atan on [0, 1] fitted by us (max error 1.2e-5 rad), then octant fix-ups.
+inline float fast_atan2(float y, float x) {
+  const float ax = std::fabs(x), ay = std::fabs(y);
+  const float hi = ax > ay ? ax : ay, lo = ax > ay ? ay : ax;
+  if (hi == 0.0f) return 0.0f;
+  const float t = lo / hi, s = t * t;
+  float r = t * (0.99986642f + s * (-0.33030633f + s * (0.18016580f + s * (-0.08516615f + s * 0.02084992f))));
+  if (ay > ax) r = 1.57079633f - r;
+  if (x < 0.0f) r = 3.14159265f - r;
+  return y < 0.0f ? -r : r;
+}
+
+// The continuous situation: goal and source relative to the character (left = +X when facing +Z,
+// forward = facing), their distances and bearings (positive to the left), the state's alpha level
+// (Eq. 13) and the last core motion.
+struct Situation {
+  float goal_left = 0, goal_forward = 0;
+  float source_left = 0, source_forward = 0;
+  float d_g = 0, theta_g = 0, d_i = 0, theta_i = 0;
+  int alpha_level = 0;
+  int motion = 0;
+
+  void update_polar() {
+    d_g = std::sqrt(goal_left * goal_left + goal_forward * goal_forward);
+    theta_g = fast_atan2(goal_left, goal_forward);
+    d_i = std::sqrt(source_left * source_left + source_forward * source_forward);
+    theta_i = fast_atan2(source_left, source_forward);
+  }
+};
+
+// A situation from world positions on the floor (x, z) and the character's heading (facing
+// (sin h, 0, cos h)).
+Situation make_situation(glm::vec2 position_xz, float heading, glm::vec2 goal_xz, glm::vec2 source_xz, int alpha_level,
+                         int motion);
+
+struct StepOutcome {
+  float reward = 0;
+  bool at_goal = false;    // the episode ends (absorbing goal, see reward.h)
+  bool at_source = false;  // alpha was forced to 1
+};
+
+class Environment {
+ public:
+  Environment(const StateSpace& states, const ActionSpace& actions, const ActionTable& table, const RewardParams& reward);
+
+  const StateSpace& states() const { return states_; }
+  const ActionSpace& actions() const { return actions_; }
+  const ActionTable& table() const { return table_; }
+  const RewardModel& reward() const { return reward_; }
+
+  // Eq. 11: the quantized state of a situation.
+  int quantize(const Situation& s) const {
+    StateBins b;
+    b.alpha = s.alpha_level;
+    b.motion = s.motion;
+    b.d_g = states_.d_g_bin(s.d_g);
+    b.theta_g = states_.theta_g_bin(s.theta_g);
+    b.d_i = states_.d_i_bin(s.d_i);
+    b.theta_i = states_.theta_i_bin(s.theta_i);
+    return states_.index(b);
+  }
+
+  // Plays action a from s: moves and turns the character, applies Eq. 13 (and the forcing of alpha to 1 at
+  // the source), and returns the reward of Eq. 17.
+  StepOutcome step(Situation& s, int action) const {
+    const Action a = actions_.decode(action);
+    const ActionEffect& e = table_.at(action);
+    const float d_g = s.d_g, d_i = s.d_i;
+    move(s.goal_left, s.goal_forward, e);
+    move(s.source_left, s.source_forward, e);
+    s.update_polar();
+    StepOutcome out;
+    out.at_source = s.d_i < reward_.source_radius() && d_i >= reward_.source_radius();  // entering its radius
+    out.at_goal = s.d_g < reward_.goal_radius();
+    out.reward = reward_(std::fabs(s.theta_g), d_g, s.d_g, s.alpha_level, a.alpha_level, out.at_source);  // Eq. 17
+    s.alpha_level = out.at_source ? states_.top_alpha_level() : a.alpha_level;  // Eq. 13, forced at the source
+    s.motion = a.motion;
+    return out;
+  }
+
+  // Exploring start: a uniformly random state (alpha level, last motion, and a goal and source placed at a
+  // uniformly random point of random bins), never one already at the goal. With probability
+  // source_at_goal the source of influence is the goal itself.
+  void exploring_start(Rng& rng, float source_at_goal, Situation& s) const;
+
+ private:
+  static void move(float& left, float& forward, const ActionEffect& e) {
+    // Into the character's frame after the action: translate by the footstep, then rotate by -turn.
+    const float l = left - e.left, f = forward - e.forward;
+    forward = f * e.cos_turn + l * e.sin_turn;
+    left = l * e.cos_turn - f * e.sin_turn;
+  }
+
+  StateSpace states_;
+  ActionSpace actions_;
+  ActionTable table_;
+  RewardModel reward_;
+  int first_start_bin_;  // the first d_g bin with room outside the goal radius
+};
+
+}  // namespace prep

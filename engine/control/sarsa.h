@@ -1,0 +1,87 @@
+// Sec. 6.3-6.4, Eq. 18-19: tabular SARSA over the quantized states and actions.
+//
+// Q(s_t, a_t) <- Q(s_t, a_t) + lambda (r_{t+1} + gamma Q(s_{t+1}, a_{t+1}) - Q(s_t, a_t))        (Eq. 19)
+// with the learning rate lambda = 0.7 and the discount gamma = 0.3 of Eq. 18 (SarsaParams). Reaching the
+// goal ends an episode; the goal is absorbing with the value of reward.h's goal_value.
+//
+// Exploration (Sec. 6.4): episodes begin at exploring starts (Environment::exploring_start); each
+// (state, action) pair has a "tried" flag and an untried allowed action is always taken first (uniformly
+// among the untried); once all are tried, epsilon-greedy (epsilon = 0.1). Greedy ties go to the lowest
+// action index.
+//
+// Bootstrapping. When the next action is exploratory (an untried action, or the epsilon draw), Eq. 19
+// bootstraps on the greedy action's value instead: an untried action's Q is still 0 and a random one is not
+// what the policy does there, and with lambda = 0.7 each such sample would drag the estimate far off.
+//
+// Termination. The paper stops "when the number of state-action values updated per episode drops below 2%
+// of the states". Two things make that literal rule unusable: our episodes last a few to a few dozen
+// steps, far fewer than 2% of 19,200 states (384), so it would stop at once; and with lambda = 0.7 every
+// update moves a Q value by a visible amount forever (within-bin positions and exploration make the
+// samples differ), so counting value changes never stops. What the paper wants is a policy that no longer
+// improves. So we count policy updates per window: training runs in rounds of
+// SarsaParams::convergence_episodes episodes; a state's policy is updated when another allowed action's
+// Q exceeds its committed greedy action's Q by more than update_tolerance (the new one becomes committed);
+// training has converged when, in one whole round, no untried action was taken anymore (exploring starts
+// are done) and fewer than convergence_fraction x states policies were updated. It also stops after
+// max_steps steps (checked at the end of a round).
+//
+// The discount. With the paper's gamma = 0.3 the learner looks about one footstep ahead. The absorbing
+// goal is then worth little more than standing still (r_max / (1 - gamma) = 1.43 against 0.85 / (1 - gamma)
+// = 1.21 for standing, facing the goal, alpha steady), so any penalty for preparing on the way in makes the
+// learned policy stop short of the source and wait there forever. assets/params/control.json trains with
+// gamma = 0.8, with which the goal is reached and preparation is under way by 1 m (README figures).
+//
+// Threads, deterministically. Each of SarsaParams::threads workers has its own replica of Q and of the
+// tried flags and its own generator (seeded from the seed and the worker's index through splitmix64), and
+// runs its share of the round's episodes (E / T each, the first E mod T workers one more). At the end of every round
+// the replicas are merged in worker order: each Q value touched by n workers becomes the master value plus
+// the mean of their changes; tried flags are OR-ed; every replica restarts from the merged table. So the
+// same seed and thread count give the same Q bit for bit, whatever the scheduling.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "engine/control/environment.h"
+#include "engine/params/params.h"
+
+namespace prep {
+
+struct TrainingPoint {
+  std::int64_t steps = 0;
+  std::int64_t episodes = 0;
+  double average_return = 0;  // mean over all states of max over allowed actions of Q (Fig. 10)
+};
+
+struct TrainingProgress {
+  std::int64_t steps = 0, max_steps = 0, episodes = 0;
+  std::int64_t round_updates = 0;  // policies updated in the last round (see Termination above)
+  std::int64_t update_limit = 0;   // the convergence threshold on round_updates
+};
+
+struct TrainingResult {
+  std::vector<float> q;  // states x actions, row-major by state
+  std::int64_t steps = 0;
+  std::int64_t episodes = 0;
+  std::int64_t rounds = 0;
+  bool converged = false;
+  double seconds = 0;
+  std::vector<TrainingPoint> curve;
+};
+
+struct TrainingOptions {
+  std::int64_t curve_every_steps = 200000;  // a training-curve point at the first round end past each multiple
+  std::function<void(const TrainingProgress&)> progress;  // called at every round end (from the calling thread)
+};
+
+// Throws std::invalid_argument for non-positive threads, rounds or step limits.
+TrainingResult train_sarsa(const Environment& env, const SarsaParams& params, const TrainingOptions& options = {});
+
+// Fig. 10's "average return per state": mean over states of the best allowed action's Q.
+double average_return_per_state(const Environment& env, const std::vector<float>& q);
+
+// The greedy allowed action of a state (lowest index on ties).
+int greedy_action(const Environment& env, const float* q_row, int last_motion);
+
+}  // namespace prep

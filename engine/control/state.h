@@ -1,0 +1,103 @@
+// Sec. 6.1, Eq. 11 and Table I: the controller's state s = {alpha, m, d_g, theta_g, d_i, theta_i} and its
+// quantization.
+//
+// Our reading of the state count. Table I prints 5 samples of alpha, but 4 core motions x 5 x 5 x 8 x 5 x 4
+// gives 16,000, not the 19,200 the paper reports. 19,200 = 4 core motions x 6 alpha levels (0, 0.2, ..., 1.0:
+// a step of 0.2 from 0 to 1 inclusive has six samples) x 5 d_g x 8 theta_g x 5 d_i x 4 theta_i. So the
+// paper's configuration has alpha_levels = 6, and "Next(m)" in Eq. 11 is represented by the last motion m
+// (it fixes which actions are allowed).
+//
+// Bins (all from QuantizationParams):
+// - distances d_g, d_i: bin k holds [k * d_step, (k + 1) * d_step); a distance beyond the last bin clamps
+//   into the last bin (so the last bin means "that far or farther").
+// - angles theta_g, theta_i: relative bearing of the goal / source from the character's facing, in
+//   (-pi, pi], positive to the character's left (counter-clockwise seen from above, +Y up). The bins are
+//   centred on straight ahead: bin 0 holds [-step/2, step/2), bin k holds [k*step - step/2, k*step + step/2)
+//   modulo a full turn, counting counter-clockwise. With 45 degrees x 8, bin 0 is "facing the goal"; with
+//   90 degrees x 4, the source is ahead, left, behind or right.
+// - alpha: level l is alpha = l * alpha_step; an alpha between levels goes to the nearest level.
+#pragma once
+
+#include <cstdint>
+
+#include "engine/params/params.h"
+
+namespace prep {
+
+// The state's components as bin indices.
+struct StateBins {
+  int alpha = 0;    // level index
+  int motion = 0;   // index of the last core motion played
+  int d_g = 0;
+  int theta_g = 0;
+  int d_i = 0;
+  int theta_i = 0;
+};
+
+// The quantized state space. Cheap to copy; every function is inline-fast (called per training step).
+class StateSpace {
+ public:
+  // Throws std::invalid_argument naming the field if a count or step is not positive, or if the top alpha
+  // level is not 1 (alpha is forced to 1 at the source of influence, which must be a level).
+  StateSpace(const QuantizationParams& q, int core_motions);
+  explicit StateSpace(const QuantizationParams& q) : StateSpace(q, static_cast<int>(q.core_roles.size())) {}
+
+  int size() const { return size_; }
+  int alpha_levels() const { return alpha_levels_; }
+  int motions() const { return motions_; }
+  int d_g_bins() const { return d_g_bins_; }
+  int theta_g_bins() const { return theta_g_bins_; }
+  int d_i_bins() const { return d_i_bins_; }
+  int theta_i_bins() const { return theta_i_bins_; }
+
+  float alpha_of(int level) const { return static_cast<float>(level) * alpha_step_; }
+  int alpha_level(float alpha) const;  // nearest level, clamped
+  int top_alpha_level() const { return alpha_levels_ - 1; }
+
+  int d_g_bin(float d) const { return distance_bin(d, inv_d_step_, d_g_bins_); }
+  int d_i_bin(float d) const { return distance_bin(d, inv_d_step_, d_i_bins_); }
+  int theta_g_bin(float theta) const { return angle_bin(theta, inv_theta_g_step_, theta_g_bins_); }
+  int theta_i_bin(float theta) const { return angle_bin(theta, inv_theta_i_step_, theta_i_bins_); }
+
+  // Eq. 11 flattened: alpha is the slowest-varying component, theta_i the fastest.
+  int index(const StateBins& b) const {
+    return ((((b.alpha * motions_ + b.motion) * d_g_bins_ + b.d_g) * theta_g_bins_ + b.theta_g) * d_i_bins_ + b.d_i) *
+               theta_i_bins_ +
+           b.theta_i;
+  }
+  StateBins decode(int index) const;
+
+  // The continuous extent of a bin, for exploring starts: [lo, hi) in metres or radians (angles relative to
+  // facing). The last distance bin is sampled as [k * step, (k + 1) * step).
+  void distance_range(int bin, float& lo, float& hi) const;
+  void theta_g_range(int bin, float& lo, float& hi) const;
+  void theta_i_range(int bin, float& lo, float& hi) const;
+
+  float d_step() const { return d_step_; }
+  float theta_g_step() const { return theta_g_step_; }
+  float theta_i_step() const { return theta_i_step_; }
+  float alpha_step() const { return alpha_step_; }
+
+  static int distance_bin(float d, float inv_step, int bins) {
+    const float k = d * inv_step;
+    if (!(k >= 0.0f)) return 0;  // also catches NaN
+    return k >= static_cast<float>(bins - 1) ? bins - 1 : static_cast<int>(k);
+  }
+  // theta in radians, any value (wrapped). Bins centred on 0, counted counter-clockwise.
+  static int angle_bin(float theta, float inv_step, int bins) {
+    const float k = theta * inv_step + 0.5f;
+    if (!(k > -1e6f && k < 1e6f)) return 0;  // NaN or absurd input: never undefined behaviour
+    int b = static_cast<int>(k);  // truncates toward zero: fix up to a floor below
+    if (k < static_cast<float>(b)) --b;
+    b %= bins;
+    return b < 0 ? b + bins : b;
+  }
+
+ private:
+  int alpha_levels_, motions_, d_g_bins_, theta_g_bins_, d_i_bins_, theta_i_bins_;
+  int size_;
+  float d_step_, theta_g_step_, theta_i_step_, alpha_step_;
+  float inv_d_step_, inv_theta_g_step_, inv_theta_i_step_;
+};
+
+}  // namespace prep

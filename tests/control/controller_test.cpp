@@ -1,0 +1,71 @@
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <memory>
+#include <stdexcept>
+
+#include "engine/control/controller.h"
+#include "engine/control/sarsa.h"
+#include "hand_made.h"
+
+using namespace prep;
+
+TEST_CASE("the Gaussian alpha filter answers a step like erf(t / (sigma sqrt 2))") {
+  const float sigma = 0.25f, dt = 1.0f / 60.0f;
+  AlphaFilter f(sigma, dt);
+  CHECK(f.taps() == static_cast<int>(std::ceil(3 * sigma / dt)) + 1);
+  f.reset(0.0f);
+  float y = 0.0f;
+  for (int k = 0; k < f.taps() + 5; ++k) {
+    y = f.push(1.0f);
+    // After k + 1 samples of 1 the output is the share of the kernel's weight on the last k + 1 ticks,
+    // about the half-normal CDF at t = (k + 0.5) dt.
+    const float t = (static_cast<float>(k) + 0.5f) * dt;
+    CHECK(y == doctest::Approx(std::erf(t / (sigma * std::sqrt(2.0f)))).epsilon(0.03));
+    if (k > 0) CHECK(y >= 0.0f);
+  }
+  CHECK(y == doctest::Approx(1.0));
+  // Monotone, smooth rise: after sigma about 68%.
+  f.reset(0.0f);
+  for (int k = 0; k < static_cast<int>(sigma / dt); ++k) y = f.push(1.0f);
+  CHECK(y == doctest::Approx(0.68).epsilon(0.05));
+  // A zero sigma passes alpha straight through.
+  AlphaFilter none(0.0f, dt);
+  none.reset(0.2f);
+  CHECK(none.push(0.8f) == doctest::Approx(0.8));
+}
+
+TEST_CASE("the runtime controller takes the greedy action and feeds its alpha back (Eq. 13)") {
+  Params params = test::small_params();
+  const auto world = test::hand_made_world(params);
+  const Environment env = test::make_environment(params, world.table);
+  const TrainingResult r = train_sarsa(env, params.sarsa);
+  auto policy = std::make_shared<Policy>();
+  policy->params_hash = policy_params_hash(params);
+  policy->quantization = params.quantization;
+  policy->table = world.table;
+  for (int m = 0; m < env.states().motions(); ++m) policy->allowed_masks.push_back(env.actions().allowed_mask(m));
+  policy->states = env.states().size();
+  policy->actions = env.actions().size();
+  policy->q = r.q;
+  Controller c(policy, params);
+  c.reset(3, 0);
+  ControlInput in;
+  in.position = {1.0f, 2.0f};
+  in.heading = 0.4f;
+  in.goal = in.source = {3.0f, 5.0f};
+  const ControlDecision d = c.decide(in);
+  const Situation s = make_situation(in.position, in.heading, in.goal, in.source, 0, 3);
+  CHECK(d.state == env.quantize(s));
+  CHECK(d.action == greedy_action(env, r.q.data() + static_cast<size_t>(d.state) * env.actions().size(), 3));
+  CHECK(c.alpha_level() == d.alpha_level);
+  CHECK(c.motion() == d.motion);
+  const float a1 = c.tick();
+  CHECK(a1 <= d.alpha + 1e-6f);
+
+  ControllerBank bank;
+  bank.add(policy);
+  CHECK(bank.for_curve(world.table.curve).get() == policy.get());
+  CHECK(bank.for_curve(RootCurve{1.0f, 1.0f, false}).get() == nullptr);
+  CHECK_THROWS_AS(bank.add(policy), std::invalid_argument);
+}
