@@ -27,6 +27,10 @@ std::vector<glm::vec3> leg_positions(const MotionSet& set, const Pose& pose) {
   return out;
 }
 
+bool same_feet_down(const FrameContacts& a, const FrameContacts& b) {
+  return a[kLeft].any() == b[kLeft].any() && a[kRight].any() == b[kRight].any();
+}
+
 float legs_distance(const std::vector<glm::vec3>& a, const std::vector<glm::vec3>& b) {
   float sum = 0.0f;
   for (size_t i = 0; i < a.size() && i < b.size(); ++i) {
@@ -59,7 +63,7 @@ ReferencePosture find_reference_posture(const MotionSet& set, int clip, const Pa
   const std::vector<glm::vec3> legs0 = leg_positions(set, mc.clip.frames[0]);
   const FrameContacts& contacts0 = mc.contacts[0];
   for (int f = r.t_t; f >= 0; --f) {  // from T_t back toward T_0
-    const bool same = mc.contacts[static_cast<size_t>(f)] == contacts0;
+    const bool same = same_feet_down(mc.contacts[static_cast<size_t>(f)], contacts0);
     if (!same) continue;
     const float legs = legs_distance(leg_positions(set, mc.clip.frames[static_cast<size_t>(f)]), legs0);
     if (legs >= params.reference.legs_threshold) continue;

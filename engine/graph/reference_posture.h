@@ -27,6 +27,10 @@ struct ReferencePosture {
 // Leg joint positions (hip, knee, ankle and toe tip of both legs) of a frame in the character's floor
 // frame: horizontally relative to the root, rotated so that the root's heading is +Z; heights as they are.
 std::vector<glm::vec3> leg_positions(const MotionSet& set, const Pose& pose);
+// Condition 2: the same feet are on the floor (a foot counts as down with its heel or its toe; comparing
+// heel and toe separately would tell apart phases of one stance that the paper's "contact foot pattern"
+// does not).
+bool same_feet_down(const FrameContacts& a, const FrameContacts& b);
 // Sum of squared differences of two such sets (condition 3).
 float legs_distance(const std::vector<glm::vec3>& a, const std::vector<glm::vec3>& b);
 // Condition 1 at one frame of a clip (uses the clip's stored contacts).

@@ -33,7 +33,13 @@ struct GraphParams {
 
 // Sec. 4.2: reference posture T_p.
 struct ReferenceParams {
-  float legs_threshold = 0.02f;   // m^2: sum of squared leg-joint position differences to T_0
+  // m^2: sum of squared leg-joint position differences to T_0 (hip, knee, ankle, toe tip of both legs,
+  // in the root's floor frame). The paper leaves it open. Chosen below the difference between walking's
+  // own two double supports (left foot ahead vs right foot ahead: 2.4-2.5 m^2 in the built-in walk), so
+  // T_p's legs are never further from T_0 than one step of the walk, while the set-up stances the targets
+  // are keyed with pass: the boxing guard (1.4), the gathered feet before the jump's crouch (0.7), the
+  // kick's planted foot (1.8). Kneeling and deep crouches (2.1-3.2) do not.
+  float legs_threshold = 2.0f;
 };
 
 // Sec. 5.1: movement style synthesis, Eq. 1-2.

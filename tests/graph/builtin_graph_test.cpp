@@ -1,0 +1,76 @@
+// The motion graph and player on the built-in library (engine/library).
+#include <doctest/doctest.h>
+
+#include <stdexcept>
+
+#include "engine/graph/motion_graph.h"
+#include "engine/library/builtin.h"
+#include "tests/graph/graph_checks.h"
+
+using namespace prep;
+
+namespace {
+const MotionSet& builtin() {
+  static const MotionSet set = make_builtin_motion_set(Params());
+  return set;
+}
+}  // namespace
+
+TEST_CASE("motion graph: built-in library hierarchy, at least four core nodes, built in under 0.5 s") {
+  const MotionGraph g = MotionGraph::build(builtin(), Params().graph);
+  MESSAGE("built-in graph: " << g.nodes().size() << " nodes, " << g.edges().size() << " edges in " << g.build_seconds() << " s");
+  test::check_hierarchy(g, 4);
+  CHECK(g.build_seconds() < 0.5f);
+  // Every core role the controller plays is there.
+  for (Role role : {Role::Idle, Role::Walk, Role::TurnLeft, Role::TurnRight}) {
+    bool found = false;
+    for (const GraphNode& n : g.nodes()) found = found || (n.role == role && n.core);
+    CHECK(found);
+  }
+}
+
+TEST_CASE("player: 200 random actions on the built-in library: no pops, no root jumps") {
+  const MotionGraph g = MotionGraph::build(builtin(), Params().graph);
+  test::check_random_play(g, 20261122);
+}
+
+TEST_CASE("player: a looping walk accumulates its root motion, continuously") {
+  const MotionSet& set = builtin();
+  const MotionGraph g = MotionGraph::build(set, Params().graph);
+  const int walk = g.find("walk");
+  REQUIRE(walk >= 0);
+  const MotionClip& mc = set.clips[static_cast<size_t>(walk)];
+  REQUIRE(mc.cyclic);
+  Player player(g);
+  player.start(walk);
+  for (int k = 0; k < 4; ++k) player.push(walk);  // four more loops
+  CHECK(player.switches().size() == 4);
+  // Distance per cycle in the clip itself, against the stream's: the stream walks five cycles' worth.
+  const float cycle = glm::length(glm::vec2(mc.clip.frames[static_cast<size_t>(mc.loop_last)].root_position.x -
+                                                mc.clip.frames[static_cast<size_t>(mc.loop_first)].root_position.x,
+                                            mc.clip.frames[static_cast<size_t>(mc.loop_last)].root_position.z -
+                                                mc.clip.frames[static_cast<size_t>(mc.loop_first)].root_position.z));
+  Pose first, last;
+  player.pose_at(0, first);
+  player.pose_at(player.frame_count() - 1, last);
+  const float travelled = glm::length(glm::vec2(last.root_position.x - first.root_position.x, last.root_position.z - first.root_position.z));
+  CHECK(travelled > 4.5f * cycle);
+  CHECK(travelled < 5.5f * cycle);
+  // Sampling between frames interpolates: halfway between two frames lies between their roots.
+  Pose a, b, mid;
+  player.pose_at(10, a);
+  player.pose_at(11, b);
+  player.sample(10.5f / player.fps(), mid);
+  CHECK(mid.root_position.z == doctest::Approx(0.5f * (a.root_position.z + b.root_position.z)).epsilon(1e-4));
+}
+
+TEST_CASE("player: an action that cannot follow is refused") {
+  const MotionGraph g = MotionGraph::build(builtin(), Params().graph);
+  Player player(g);
+  const int jump = g.find("jump"), kick = g.find("kick");
+  REQUIRE(jump >= 0);
+  REQUIRE(kick >= 0);
+  player.start(jump);
+  CHECK_THROWS_AS(player.push(kick), std::invalid_argument);  // no target -> target edges
+  for (int n : player.available()) CHECK(g.nodes()[static_cast<size_t>(n)].core);
+}
