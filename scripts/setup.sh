@@ -8,7 +8,7 @@ shift || true
 
 packages=(build-essential cmake ninja-build pkg-config
           libglm-dev nlohmann-json3-dev libcli11-dev doctest-dev libbenchmark-dev libstb-dev
-          libtinygltf-dev libglfw3-dev libimgui-dev libosmesa6-dev xvfb xauth
+          libtinygltf-dev libglfw3-dev libimgui-dev libosmesa6-dev xvfb xauth xdotool
           locales-all  # a comma-decimal locale for the BVH locale test
           ${PREP_EXTRA_PACKAGES:-})
 missing=()

@@ -40,7 +40,7 @@ int main(int argc, char** argv) {
   cli.add_flag("--no-panels", no_panels, "Do not draw the ImGui panels");
   cli.add_flag("--no-obstacle", no_props, "Do not place the obstacle of the clip's role (bar, beam, hurdle, ball)");
   cli.add_option("--script", script, "Window: scripted key presses FRAME:KEY,... (e.g. 20:e,40:space)");
-  cli.add_option("--screenshot-after", screenshot_after, "Window: frame after which --screenshot is taken")->capture_default_str();
+  cli.add_option("--screenshot-after", screenshot_after, "Window: frame after which --screenshot is taken (-1: on closing, e.g. Escape)")->capture_default_str();
   cli.add_option("--quit-after", quit_after, "Window: close after this many frames");
   cli.add_flag("--no-vsync", no_vsync, "Window: do not wait for the display's refresh");
   CLI11_PARSE(cli, argc, argv);

@@ -106,12 +106,17 @@ void run_window(const DemoMotions& motions, const WindowOptions& options) {
   for (int frame = 0; !context.should_close() && !app.quit_requested; ++frame) {
     glfwPollEvents();
     for (const ScriptedKey& k : options.script)
-      if (k.frame == frame) app.on_key(k.key);
+      if (k.frame == frame) {
+        std::cout << "prep-demo: frame " << frame << ": scripted key " << k.key << "\n";
+        app.on_key(k.key);
+      }
     const auto now = Clock::now();
     const float dt = std::min(static_cast<float>(std::chrono::duration<double>(now - previous).count()), 0.1f);
     previous = now;
     app.frame(dt);
-    if (!options.screenshot.empty() && frame == options.screenshot_after) {
+    const bool quitting = app.quit_requested || context.should_close();
+    if (!options.screenshot.empty() &&
+        (frame == options.screenshot_after || (options.screenshot_after < 0 && quitting))) {
       render::write_png(context.read_pixels(), options.screenshot);
       std::cout << "prep-demo: wrote " << options.screenshot << " (frame " << frame << ")\n";
       app.quit_requested = true;

@@ -24,8 +24,8 @@ struct WindowOptions {
   int clip = 0;
   bool vsync = true;
   std::vector<ScriptedKey> script;
-  std::string screenshot;       // written after frame `screenshot_after` (from the back buffer), then quit
-  int screenshot_after = 60;
+  std::string screenshot;       // written after frame `screenshot_after` (from the back buffer), then quit;
+  int screenshot_after = 60;    // -1: when the demo is closed (Escape or the window's close button)
   int quit_after = -1;          // frames; -1 runs until the window closes
 };
 
