@@ -19,6 +19,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <string_view>
 #include <system_error>
+#include <unordered_set>
 
 #include "engine/util/error.h"
 #include "engine/util/files.h"
@@ -268,7 +269,7 @@ class Parser {
     Joint j;
     j.name = std::string(name.text);
     j.parent = parent;
-    if (skeleton.find(j.name) >= 0) fail(keyword_line, "joint name '" + j.name + "' repeats");
+    if (!names_.insert(j.name).second) fail(keyword_line, "joint name '" + j.name + "' repeats");
     skeleton.joints.push_back(std::move(j));
     ParsedJoint info;
     info.line = keyword_line;
@@ -422,6 +423,7 @@ class Parser {
   const BvhReadOptions& options_;
   Lexer lex_;
   std::vector<ParsedJoint> parsed_;
+  std::unordered_set<std::string> names_;  // a hash set: files with very many joints stay linear
   int total_columns_ = 0;
   glm::dvec3 last_offset_{0.0};
   glm::dvec3 root_offset_{0.0};  // metres, kept in double until it is added to the root's position
@@ -461,31 +463,46 @@ glm::dvec3 euler_zxy_degrees(const glm::quat& qf) {
   return glm::degrees(glm::dvec3(x, y, z));
 }
 
-void write_joint(std::string& out, const Skeleton& skeleton, const std::vector<std::vector<int>>& children, int j, int depth,
-                 double inv_scale, std::vector<int>& order) {
-  const Joint& joint = skeleton.joints[static_cast<size_t>(j)];
-  const std::string indent(static_cast<size_t>(depth), '\t');
-  order.push_back(j);
-  out += indent + (j == 0 ? "ROOT " : "JOINT ") + joint.name + "\n" + indent + "{\n";
-  const glm::vec3 offset = j == 0 ? glm::vec3(0.0f) : glm::vec3(glm::dvec3(joint.offset) * inv_scale);
-  out += indent + "\tOFFSET ";
-  for (int k = 0; k < 3; ++k) {
-    append_number(out, offset[k]);
-    out += k < 2 ? " " : "\n";
-  }
-  out += indent + (j == 0 ? "\tCHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation\n"
-                          : "\tCHANNELS 3 Zrotation Xrotation Yrotation\n");
-  for (int c : children[static_cast<size_t>(j)]) write_joint(out, skeleton, children, c, depth + 1, inv_scale, order);
-  if (joint.has_end_site) {
-    const glm::vec3 e = glm::vec3(glm::dvec3(joint.end_site) * inv_scale);
-    out += indent + "\tEnd Site\n" + indent + "\t{\n" + indent + "\t\tOFFSET ";
+// The hierarchy, depth-first with an explicit stack (no recursion, whatever the depth). Indentation is
+// capped so that a very deep chain does not grow the file quadratically.
+void write_hierarchy(std::string& out, const Skeleton& skeleton, const std::vector<std::vector<int>>& children,
+                     double inv_scale, std::vector<int>& order) {
+  struct Item {
+    int joint;
+    int depth;
+    bool closing;
+  };
+  auto vec = [&](const glm::vec3& v) {
     for (int k = 0; k < 3; ++k) {
-      append_number(out, e[k]);
+      append_number(out, v[k]);
       out += k < 2 ? " " : "\n";
     }
-    out += indent + "\t}\n";
+  };
+  std::vector<Item> stack = {{0, 0, false}};
+  while (!stack.empty()) {
+    const Item item = stack.back();
+    stack.pop_back();
+    const Joint& joint = skeleton.joints[static_cast<size_t>(item.joint)];
+    const std::string indent(static_cast<size_t>(std::min(item.depth, 32)), '\t');
+    if (item.closing) {
+      if (joint.has_end_site) {
+        out += indent + "\tEnd Site\n" + indent + "\t{\n" + indent + "\t\tOFFSET ";
+        vec(glm::vec3(glm::dvec3(joint.end_site) * inv_scale));
+        out += indent + "\t}\n";
+      }
+      out += indent + "}\n";
+      continue;
+    }
+    order.push_back(item.joint);
+    out += indent + (item.joint == 0 ? "ROOT " : "JOINT ") + joint.name + "\n" + indent + "{\n";
+    out += indent + "\tOFFSET ";
+    vec(item.joint == 0 ? glm::vec3(0.0f) : glm::vec3(glm::dvec3(joint.offset) * inv_scale));  // root: in the motion
+    out += indent + (item.joint == 0 ? "\tCHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation\n"
+                                     : "\tCHANNELS 3 Zrotation Xrotation Yrotation\n");
+    stack.push_back({item.joint, item.depth, true});
+    const auto& kids = children[static_cast<size_t>(item.joint)];
+    for (auto it = kids.rbegin(); it != kids.rend(); ++it) stack.push_back({*it, item.depth + 1, false});
   }
-  out += indent + "}\n";
 }
 
 }  // namespace
@@ -513,7 +530,7 @@ std::string format_bvh(const Clip& clip, const BvhWriteOptions& options) {
 
   std::string out = "HIERARCHY\n";
   std::vector<int> order;  // depth-first, the order the channels are written in
-  write_joint(out, skeleton, children, 0, 0, inv_scale, order);
+  write_hierarchy(out, skeleton, children, inv_scale, order);
   out += "MOTION\nFrames: " + std::to_string(clip.frames.size()) + "\nFrame Time: ";
   append_number(out, 1.0 / static_cast<double>(clip.fps));
   out += "\n";

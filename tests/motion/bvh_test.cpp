@@ -413,3 +413,26 @@ TEST_CASE("every truncation and single-byte corruption of a valid file loads or 
       try_parse(t);
     }
 }
+
+TEST_CASE("a repeated joint name is an error naming its line") {
+  CHECK_THROWS_WITH_AS(parse_bvh(replace_line(kSmall, 6, "  JOINT hips"), "twice.bvh"),
+                       doctest::Contains("twice.bvh:6: joint name 'hips' repeats"), InputError);
+}
+
+TEST_CASE("a very deep hierarchy reads and writes without recursion") {
+  const int depth = 20000;
+  std::string text = "HIERARCHY\nROOT j0\n{\nOFFSET 0 0 0\nCHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation\n";
+  for (int i = 1; i < depth; ++i) text += "JOINT j" + std::to_string(i) + "\n{\nOFFSET 0 1 0\nCHANNELS 3 Zrotation Xrotation Yrotation\n";
+  text += "End Site\n{\nOFFSET 0 1 0\n}\n";
+  for (int i = 0; i < depth; ++i) text += "}\n";
+  text += "MOTION\nFrames: 1\nFrame Time: 0.1\n0 0 0";
+  for (int i = 0; i < depth; ++i) text += " 0 0 0";
+  text += "\n";
+  const Clip clip = parse_bvh(text, "deep.bvh");
+  REQUIRE(clip.skeleton->size() == depth);
+  const WorldPose w = world(clip, 0);
+  CHECK(w.positions.back().y == doctest::Approx(0.01 * (depth - 1)).epsilon(1e-3));  // float sums of 20000 bones
+  const Clip again = parse_bvh(format_bvh(clip), "deep.bvh");
+  CHECK(again.skeleton->size() == depth);
+  CHECK(world(again, 0).positions.back().y == doctest::Approx(0.01 * (depth - 1)).epsilon(1e-3));  // float sums of 20000 bones
+}
