@@ -30,6 +30,11 @@ Environment::Environment(const StateSpace& states, const ActionSpace& actions, c
       table_.motions != states_.motions() || table_.alpha_levels != states_.alpha_levels() ||
       static_cast<int>(table_.effects.size()) != actions_.size())
     throw std::invalid_argument("environment: the state space, actions and action table disagree on motions or levels");
+  for (int a = 0; a < 64; ++a) {
+    const Action d = actions_.decode(a < actions_.size() ? a : 0);
+    action_level_[a] = static_cast<std::uint8_t>(d.alpha_level);
+    action_motion_[a] = static_cast<std::uint8_t>(d.motion);
+  }
   first_start_bin_ = 0;
   while (first_start_bin_ < states_.d_g_bins() - 1 &&
          static_cast<float>(first_start_bin_ + 1) * states_.d_step() <= reward_.goal_radius())

@@ -82,7 +82,7 @@ class Environment {
   // Plays action a from s: moves and turns the character, applies Eq. 13 (and the forcing of alpha to 1 at
   // the source), and returns the reward of Eq. 17.
   StepOutcome step(Situation& s, int action) const {
-    const Action a = actions_.decode(action);
+    const int level = action_level_[action], motion = action_motion_[action];  // decode without a division
     const ActionEffect& e = table_.at(action);
     const float d_g = s.d_g, d_i = s.d_i;
     move(s.goal_left, s.goal_forward, e);
@@ -91,9 +91,9 @@ class Environment {
     StepOutcome out;
     out.at_source = s.d_i < reward_.source_radius() && d_i >= reward_.source_radius();  // entering its radius
     out.at_goal = s.d_g < reward_.goal_radius();
-    out.reward = reward_(std::fabs(s.theta_g), d_g, s.d_g, s.alpha_level, a.alpha_level, out.at_source);  // Eq. 17
-    s.alpha_level = out.at_source ? states_.top_alpha_level() : a.alpha_level;  // Eq. 13, forced at the source
-    s.motion = a.motion;
+    out.reward = reward_(std::fabs(s.theta_g), d_g, s.d_g, s.alpha_level, level, out.at_source);  // Eq. 17
+    s.alpha_level = out.at_source ? states_.top_alpha_level() : level;  // Eq. 13, forced at the source
+    s.motion = motion;
     return out;
   }
 
@@ -115,6 +115,7 @@ class Environment {
   ActionTable table_;
   RewardModel reward_;
   int first_start_bin_;  // the first d_g bin with room outside the goal radius
+  std::uint8_t action_level_[64], action_motion_[64];
 };
 
 }  // namespace prep

@@ -1,6 +1,7 @@
 #include "engine/control/sarsa.h"
 
 #include <chrono>
+#include <ctime>
 #include <condition_variable>
 #include <cmath>
 #include <mutex>
@@ -161,15 +162,21 @@ class RoundPool {
 int greedy_action(const Environment& env, const float* q_row, int last_motion) {
   const std::uint64_t allowed = env.actions().allowed_mask(last_motion);
   const int n = env.actions().size();
-  int best = -1;
-  float best_q = 0.0f;
-  for (int a = 0; a < n; ++a) {
-    if (!(allowed >> a & 1u)) continue;
-    if (best < 0 || q_row[a] > best_q) {
+  int best = __builtin_ctzll(allowed);  // the lowest allowed action (the mask is never empty)
+  float best_q = q_row[best];
+  if (allowed == (n == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << n) - 1)) {
+    for (int a = 1; a < n; ++a)  // every action allowed: a plain scan
+      if (q_row[a] > best_q) {
+        best = a;
+        best_q = q_row[a];
+      }
+    return best;
+  }
+  for (int a = best + 1; a < n; ++a)
+    if ((allowed >> a & 1u) && q_row[a] > best_q) {
       best = a;
       best_q = q_row[a];
     }
-  }
   return best;
 }
 
@@ -192,6 +199,12 @@ TrainingResult train_sarsa(const Environment& env, const SarsaParams& p, const T
   if (!(p.discount >= 0.0f && p.discount < 1.0f)) throw std::invalid_argument("sarsa.discount must be in [0, 1)");
 
   const auto start = std::chrono::steady_clock::now();
+  auto cpu_now = [] {
+    timespec t{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+  };
+  const double cpu_start = cpu_now();
   const int T = p.threads;
   const size_t states = static_cast<size_t>(env.states().size());
   const size_t actions = static_cast<size_t>(env.actions().size());
@@ -219,9 +232,11 @@ TrainingResult train_sarsa(const Environment& env, const SarsaParams& p, const T
   std::vector<int> merged, changed_states;
   merged.reserve(1 << 16);
   std::vector<std::uint8_t> state_flag(states, 0);
-  std::vector<int> policy(states);  // the committed greedy action per state
-  for (size_t s = 0; s < states; ++s)
-    policy[s] = greedy_action(env, master.data() + s * actions, env.states().decode(static_cast<int>(s)).motion);
+  std::vector<int> policy(states), motion_of(states);  // the committed greedy action and last motion per state
+  for (size_t s = 0; s < states; ++s) {
+    motion_of[s] = env.states().decode(static_cast<int>(s)).motion;
+    policy[s] = greedy_action(env, master.data() + s * actions, motion_of[s]);
+  }
 
   TrainingResult result;
   const std::int64_t update_limit =
@@ -274,7 +289,7 @@ TrainingResult train_sarsa(const Environment& env, const SarsaParams& p, const T
       const size_t s = static_cast<size_t>(st);
       state_flag[s] = 0;
       const float* row = master.data() + s * actions;
-      const int best = greedy_action(env, row, env.states().decode(st).motion);
+      const int best = greedy_action(env, row, motion_of[s]);
       int& committed = policy[s];
       if (best != committed && row[best] - row[committed] > p.update_tolerance) {
         committed = best;
@@ -303,6 +318,7 @@ TrainingResult train_sarsa(const Environment& env, const SarsaParams& p, const T
   }
   result.q = std::move(master);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.cpu_seconds = cpu_now() - cpu_start;
   return result;
 }
 

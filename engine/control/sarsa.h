@@ -66,7 +66,8 @@ struct TrainingResult {
   std::int64_t episodes = 0;
   std::int64_t rounds = 0;
   bool converged = false;
-  double seconds = 0;
+  double seconds = 0;      // wall-clock time
+  double cpu_seconds = 0;  // CPU time of the whole process over the same span (all threads)
   std::vector<TrainingPoint> curve;
 };
 

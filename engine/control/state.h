@@ -89,6 +89,7 @@ class StateSpace {
     if (!(k > -1e6f && k < 1e6f)) return 0;  // NaN or absurd input: never undefined behaviour
     int b = static_cast<int>(k);  // truncates toward zero: fix up to a floor below
     if (k < static_cast<float>(b)) --b;
+    if (b >= 0 && b < bins) return b;  // the usual case, no division: theta in (-pi, pi] is at most one turn off
     b %= bins;
     return b < 0 ? b + bins : b;
   }
