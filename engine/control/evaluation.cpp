@@ -58,7 +58,7 @@ PolicyEvaluation evaluate_policy(const Environment& env, const std::vector<float
     s.alpha_level = 0;
     s.motion = start_motion;
     s.update_polar();
-    bool seen_1m = false, seen_source = false;
+    bool seen_1m = false;
     double ret = 0.0, weight = 1.0;
     for (int t = 0; t < max_episode_steps; ++t) {
       const int state = env.quantize(s);
@@ -71,11 +71,8 @@ PolicyEvaluation evaluate_policy(const Environment& env, const std::vector<float
         seen_1m = true;
         if (alpha >= 0.5f) ++prepared_at_1m;
       }
-      if (!seen_source && out.at_source) {
-        seen_source = true;
-        alpha_at_source.push_back(alpha);
-      }
       if (out.at_goal) {
+        alpha_at_source.push_back(alpha);  // the source is the goal: the level the character arrives with
         ++reached;
         steps_to_goal.push_back(t + 1);
         break;

@@ -8,8 +8,11 @@
 //
 // - goal_reached_ratio: episodes that reached the goal.
 // - median_steps_to_goal: over the episodes that reached it.
-// - median_alpha_at_source: the alpha of the action during which the character reached the source (the
-//   level it arrives with, before the forcing to 1).
+// - median_alpha_at_source: the alpha of the action with which the character arrives at the source (the
+//   goal, within RewardParams::goal_radius: where the target motion is launched), over the episodes that
+//   arrive. The played level, not the training's forcing to 1 (which happens earlier, on entering
+//   source_radius). At alpha = 1 the root weight is 1 and Eq. 3-4 leave no stride, so with alpha levels
+//   0.2 apart the highest level a character can arrive with is 0.8.
 // - alpha_at_1m_ratio: episodes whose alpha, when the character first comes within 1 m of the source, is
 //   at least 0.5 (the alpha of the action that brought it within 1 m).
 #pragma once
