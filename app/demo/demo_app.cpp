@@ -24,10 +24,10 @@ render::Camera default_camera(const render::Scene& scene) {
   return camera;
 }
 
-DemoApp::DemoApp(render::GlContext& context, DemoMotions motions, GLFWwindow* window)
+DemoApp::DemoApp(render::GlContext& context, DemoMotions motions, GLFWwindow* window, const render::RenderSettings& settings)
     : context_(context), motions_(std::move(motions)) {
   context_.make_current();
-  renderer_ = std::make_unique<render::Renderer>();
+  renderer_ = std::make_unique<render::Renderer>(settings);
   ui_ = std::make_unique<render::ImGuiLayer>(window);
   gl_description_ = gl::describe_context();
   if (!motions_.clips.empty()) camera = default_camera(clip_scene(motions_.clips[0], 0.0f, false));

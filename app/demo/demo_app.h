@@ -21,7 +21,7 @@ namespace prep::demo {
 class DemoApp {
  public:
   // window: the GLFW window for ImGui's input, or nullptr headless.
-  DemoApp(render::GlContext& context, DemoMotions motions, GLFWwindow* window);
+  DemoApp(render::GlContext& context, DemoMotions motions, GLFWwindow* window, const render::RenderSettings& settings = {});
 
   // One frame of dt seconds into the context's framebuffer (the caller ends the frame).
   void frame(float dt);

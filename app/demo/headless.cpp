@@ -1,10 +1,12 @@
 #include "app/demo/headless.h"
 
+#include <sys/resource.h>
+
 namespace prep::demo {
 
 render::Image headless_screenshot(const DemoMotions& motions, const HeadlessOptions& options) {
   render::OsMesaContext context(options.width, options.height);
-  DemoApp app(context, motions, nullptr);
+  DemoApp app(context, motions, nullptr, options.render);
   app.player.select(app.motions(), options.clip);
   app.player.time = options.time;
   app.player.playing = false;
@@ -16,6 +18,12 @@ render::Image headless_screenshot(const DemoMotions& motions, const HeadlessOpti
 }
 
 namespace {
+double process_cpu_ms() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return (usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) * 1e3 + (usage.ru_utime.tv_usec + usage.ru_stime.tv_usec) * 1e-3;
+}
+
 // Runs `frames` frames; returns wall-clock seconds.
 double run(DemoApp& app, render::GlContext& context, int frames) {
   const auto start = Clock::now();
@@ -31,14 +39,16 @@ double run(DemoApp& app, render::GlContext& context, int frames) {
 
 BenchResult headless_bench(const DemoMotions& motions, const HeadlessOptions& options, int frames) {
   render::OsMesaContext context(options.width, options.height);
-  DemoApp app(context, motions, nullptr);
+  DemoApp app(context, motions, nullptr, options.render);
   app.player.select(app.motions(), options.clip);
   app.show_panels = options.panels;
   run(app, context, kSettleFrames * 4);  // shader compilation, font atlas, ImGui layout: not measured
 
   BenchResult result;
   app.sync_stages = false;
+  const double cpu_start = process_cpu_ms();
   result.fps = frames / run(app, context, frames);
+  result.cpu_ms_per_frame = (process_cpu_ms() - cpu_start) / frames;
 
   app.sync_stages = true;
   double total[kStageCount] = {};

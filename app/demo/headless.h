@@ -13,6 +13,7 @@ struct HeadlessOptions {
   int clip = 0;
   float time = 0.0f;     // s into the clip for a screenshot
   bool panels = true;
+  render::RenderSettings render;
 };
 
 // Frames drawn before a screenshot is read: ImGui lays out new auto-sized windows over the first frames.
@@ -23,6 +24,7 @@ render::Image headless_screenshot(const DemoMotions& motions, const HeadlessOpti
 
 struct BenchResult {
   double fps = 0.0;                       // free-running frames per second
+  double cpu_ms_per_frame = 0.0;          // process CPU time (all threads: ours and llvmpipe's) per free-running frame
   double stage_ms[kStageCount] = {};      // mean ms per stage, each stage ended by glFinish
   double synced_fps = 0.0;                // frames per second of that synchronised run
   int triangles = 0;

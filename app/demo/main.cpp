@@ -11,6 +11,7 @@
 #include "app/demo/windowed.h"
 #include "app/render/gl_context.h"
 #include "app/render/image.h"
+#include "app/render/renderer.h"
 #include "engine/params/params.h"
 
 using namespace prep;
@@ -23,6 +24,7 @@ int main(int argc, char** argv) {
   std::string motions_arg = "builtin", bvh, clip_name, strip, screenshot, params_file, script;
   float unit_scale = 0.01f, time = 0.0f;
   int frames = 8, width = 0, height = 0, bench_frames = 0, screenshot_after = 60, quit_after = -1;
+  int shadow_map = render::RenderSettings{}.shadow_map_size;
   bool no_panels = false, no_props = false, no_vsync = false;
   cli.add_flag("--headless", headless, "Render off-screen through OSMesa (no display needed)");
   cli.add_option("--motions", motions_arg, "builtin, or a motion-set manifest (JSON)")->capture_default_str();
@@ -37,6 +39,7 @@ int main(int argc, char** argv) {
   cli.add_option("--width", width, "Image or window width (strip: width of one tile; default 1280, strip 320)");
   cli.add_option("--height", height, "Image or window height (strip: tile height; default 720, strip 480)");
   cli.add_option("--bench-frames", bench_frames, "Headless: draw N frames, print frames/s and ms per stage");
+  cli.add_option("--shadow-map", shadow_map, "Shadow map size in texels (0: no shadows)")->capture_default_str();
   cli.add_flag("--no-panels", no_panels, "Do not draw the ImGui panels");
   cli.add_flag("--no-obstacle", no_props, "Do not place the obstacle of the clip's role (bar, beam, hurdle, ball)");
   cli.add_option("--script", script, "Window: scripted key presses FRAME:KEY,... (e.g. 20:e,40:space)");
@@ -97,6 +100,7 @@ int main(int argc, char** argv) {
     h.clip = clip;
     h.time = time;
     h.panels = !no_panels;
+    h.render.shadow_map_size = shadow_map;
     if (!screenshot.empty()) {
       render::write_png(headless_screenshot(motions, h), screenshot);
       std::cout << "prep-demo: wrote " << screenshot << " (" << motions.clips[clip].clip.name << " at " << time << " s, "
@@ -106,7 +110,8 @@ int main(int argc, char** argv) {
       const BenchResult r = headless_bench(motions, h, bench_frames);
       std::cout << std::fixed << std::setprecision(1) << "prep-demo: " << h.width << "x" << h.height
                 << (h.panels ? " with panels" : " without panels") << ", " << bench_frames << " frames, " << r.triangles
-                << " triangles\n  free-running: " << r.fps << " frames/s\n  each stage finished (glFinish): "
+                << " triangles\n  free-running: " << r.fps << " frames/s; CPU time " << r.cpu_ms_per_frame
+                << " ms per frame over all threads\n  each stage finished (glFinish): "
                 << r.synced_fps << " frames/s; ms per stage:" << std::setprecision(2);
       for (int s = 0; s < kStageCount; ++s) std::cout << "  " << stage_name(s) << " " << r.stage_ms[s];
       std::cout << "\n";

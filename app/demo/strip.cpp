@@ -20,7 +20,9 @@ render::Image render_strip(const DemoClip& clip, const StripOptions& options) {
   if (clip.clip.frames.empty()) throw std::invalid_argument("strip: clip " + clip.clip.name + " has no frames");
   const int width = options.tile_width * options.frames, height = options.tile_height;
   render::OsMesaContext context(width, height);
-  render::Renderer renderer;
+  render::RenderSettings settings;
+  settings.shadow_map_size = 2048;  // stills: sharper shadows, speed does not matter
+  render::Renderer renderer(settings);
   const render::Camera side = strip_camera(clip);
   std::vector<float> times(static_cast<size_t>(options.frames));
   for (int i = 0; i < options.frames; ++i)
