@@ -159,27 +159,6 @@ class RoundPool {
 
 }  // namespace
 
-int greedy_action(const Environment& env, const float* q_row, int last_motion) {
-  const std::uint64_t allowed = env.actions().allowed_mask(last_motion);
-  const int n = env.actions().size();
-  int best = __builtin_ctzll(allowed);  // the lowest allowed action (the mask is never empty)
-  float best_q = q_row[best];
-  if (allowed == (n == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << n) - 1)) {
-    for (int a = 1; a < n; ++a)  // every action allowed: a plain scan
-      if (q_row[a] > best_q) {
-        best = a;
-        best_q = q_row[a];
-      }
-    return best;
-  }
-  for (int a = best + 1; a < n; ++a)
-    if ((allowed >> a & 1u) && q_row[a] > best_q) {
-      best = a;
-      best_q = q_row[a];
-    }
-  return best;
-}
-
 double average_return_per_state(const Environment& env, const std::vector<float>& q) {
   const int states = env.states().size(), actions = env.actions().size();
   double sum = 0.0;

@@ -82,7 +82,27 @@ TrainingResult train_sarsa(const Environment& env, const SarsaParams& params, co
 // Fig. 10's "average return per state": mean over states of the best allowed action's Q.
 double average_return_per_state(const Environment& env, const std::vector<float>& q);
 
-// The greedy allowed action of a state (lowest index on ties).
-int greedy_action(const Environment& env, const float* q_row, int last_motion);
+// The greedy allowed action of a state (lowest index on ties). Inline: it runs at every training step.
+inline int greedy_action(const Environment& env, const float* q_row, int last_motion) {
+  const std::uint64_t allowed = env.actions().allowed_mask(last_motion);
+  const int n = env.actions().size();
+  if (allowed == (n == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << n) - 1)) {
+    // Every action allowed: the maximum first (a branch-free reduction the compiler vectorizes), then the
+    // first action holding it.
+    float best_q = q_row[0];
+    for (int a = 1; a < n; ++a) best_q = q_row[a] > best_q ? q_row[a] : best_q;
+    int best = 0;
+    while (q_row[best] != best_q) ++best;
+    return best;
+  }
+  int best = __builtin_ctzll(allowed);  // the lowest allowed action (the mask is never empty)
+  float best_q = q_row[best];
+  for (int a = best + 1; a < n; ++a)
+    if ((allowed >> a & 1u) && q_row[a] > best_q) {
+      best = a;
+      best_q = q_row[a];
+    }
+  return best;
+}
 
 }  // namespace prep
