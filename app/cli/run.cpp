@@ -1,0 +1,72 @@
+// prep run: a scenario headless, engine only (no GL): the fixed-step world loop for --seconds, then per
+// target motion launched its action, alpha_at_launch and time, and whether the goal was reached.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "app/cli/command.h"
+#include "engine/world/policy_cache.h"
+#include "engine/world/world.h"
+
+namespace {
+
+prep::cli::RegisterCommand run_command(
+    "run",
+    "Run a scenario headless (engine only) and print each target motion launched (action, alpha_at_launch, "
+    "time) and whether the goal was reached",
+    40, [](CLI::App& app) {
+      struct Options {
+        std::string scenario;
+        float seconds = 30.0f;
+        std::string params;
+        std::string cache;
+        bool json = false;
+        float trace = 0.0f;
+      };
+      auto o = std::make_shared<Options>();
+      app.add_option("--scenario", o->scenario, "Scenario JSON (e.g. assets/scenarios/obstacles.json)")->required();
+      app.add_option("--seconds", o->seconds, "Simulated seconds (default 30)");
+      app.add_option("--params", o->params, "Params JSON (default: the scenario's \"params\", else the defaults)");
+      app.add_option("--policy-cache", o->cache, "Folder of cached policies (default: ~/.cache/prep)");
+      app.add_flag("--json", o->json, "Print one JSON object");
+      app.add_option("--trace", o->trace, "Also print the user's state every TRACE seconds (to stderr)");
+      app.callback([o] {
+        if (!(o->seconds > 0.0f)) throw std::invalid_argument("--seconds must be positive");
+        const prep::Scenario scenario = prep::load_scenario(o->scenario);
+        const prep::Params params = o->params.empty() ? prep::load_scenario_params(scenario) : prep::load_params(o->params);
+        bool trained = false;
+        const std::string cache = o->cache.empty() ? prep::default_policy_cache_dir() : o->cache;
+        if (!o->json) std::cerr << "preparing the motion graph and the controller (policy cache: " << cache << ")\n";
+        const auto assets = prep::prepare_world_assets(scenario, params, cache, &trained);
+        if (!o->json) std::cerr << (trained ? "trained a policy and cached it\n" : "using the cached policy\n");
+        if (!o->json)
+          std::cerr << "policy: " << assets->policy->steps << " SARSA steps, " << assets->policy->episodes << " episodes"
+                    << (assets->policy->converged ? ", converged\n" : ", not converged\n");
+        prep::World world(scenario, assets);
+        const int ticks = static_cast<int>(std::lround(o->seconds / params.runtime.fixed_dt));
+        const int every = o->trace > 0.0f ? std::max(1, static_cast<int>(std::lround(o->trace / params.runtime.fixed_dt))) : 0;
+        for (int k = 0; k < ticks; ++k) {
+          world.step();
+          if (every > 0 && world.ticks() % every == 0) {
+            const prep::WorldCharacter& u = world.characters()[static_cast<size_t>(world.user())];
+            std::fprintf(stderr,
+                         "t %6.2f  pos (%6.2f, %6.2f)  heading %7.1f deg  alpha %.2f (chosen %.1f %s)  clip %-12s  source %s\n",
+                         world.time(), u.position.x, u.position.y, u.heading * 57.2957795f, u.alpha, u.chosen_alpha,
+                         u.motion >= 0 ? world.assets().policy->table.motion_names[static_cast<size_t>(u.motion)].c_str() : "-",
+                         world.assets().set->clips[static_cast<size_t>(u.clip)].clip.name.c_str(),
+                         u.has_source ? prep::target_action_name(u.prepared_for) : "-");
+          }
+        }
+        const prep::RunSummary summary = prep::summarize(world);
+        if (o->json)
+          std::cout << prep::summary_json(summary, world) << "\n";
+        else
+          std::cout << prep::summary_text(summary);
+      });
+    });
+
+}  // namespace

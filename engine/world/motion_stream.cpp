@@ -1,0 +1,90 @@
+#include "engine/world/motion_stream.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "engine/graph/player.h"
+
+namespace prep {
+
+FloorTransform place_frame(const Clip& clip, int frame, glm::vec2 position, float heading) {
+  const Pose& p = clip.frames[static_cast<size_t>(std::clamp(frame, 0, clip.frame_count() - 1))];
+  FloorTransform t;
+  t.angle = heading - heading_of(p.rotations[0]);
+  t.offset = {0.0f, 0.0f};
+  const glm::vec3 turned = t.apply(glm::vec3(p.root_position.x, 0.0f, p.root_position.z));
+  t.offset = position - glm::vec2(turned.x, turned.z);
+  return t;
+}
+
+MotionStream::MotionStream(const MotionGraph& graph) : graph_(&graph), player_(std::make_unique<Player>(graph)) {}
+MotionStream::~MotionStream() = default;
+MotionStream::MotionStream(MotionStream&&) noexcept = default;
+MotionStream& MotionStream::operator=(MotionStream&&) noexcept = default;
+
+void MotionStream::start(int node, int frame, glm::vec2 position, float heading) {
+  const MotionClip& mc = graph_->set().clips.at(static_cast<size_t>(node));
+  const int first = frame >= 0 ? std::min(frame, mc.clip.frame_count() - 1) : (mc.cyclic ? mc.loop_first : 0);
+  player_->start(node, first, place_frame(mc.clip, first, position, heading));
+  pieces_.assign(1, Piece{0, node, first});
+  time_ = 0.0f;
+  sample();
+}
+
+bool MotionStream::queue(int node) {
+  const size_t before = player_->switches().size();
+  try {
+    player_->push(PlayerAction{node, -1});
+  } catch (const std::invalid_argument&) {
+    return false;
+  }
+  const auto& switches = player_->switches();
+  for (size_t k = before; k < switches.size(); ++k) {
+    const GraphEdge& e = graph_->edges()[static_cast<size_t>(switches[k].edge)];
+    pieces_.push_back(Piece{switches[k].stream_frame, e.to, e.to_frame});
+  }
+  return true;
+}
+
+std::vector<int> MotionStream::available() const { return player_->available(); }
+
+float MotionStream::queued_start() const {
+  return pieces_.empty() ? 0.0f : static_cast<float>(pieces_.back().stream_first) / player_->fps();
+}
+
+bool MotionStream::needs_next() const { return time_ * player_->fps() >= static_cast<float>(pieces_.back().stream_first); }
+
+bool MotionStream::has_ahead(float seconds) const { return player_->duration() - time_ >= seconds; }
+
+void MotionStream::advance(float dt) {
+  time_ += dt;
+  sample();
+}
+
+void MotionStream::sample() { player_->sample(time_, pose_); }
+
+const MotionStream::Piece& MotionStream::piece_at(int stream_frame) const {
+  const auto it = std::upper_bound(pieces_.begin(), pieces_.end(), stream_frame,
+                                   [](int f, const Piece& p) { return f < p.stream_first; });
+  return it == pieces_.begin() ? pieces_.front() : *(it - 1);
+}
+
+int MotionStream::node() const { return piece_at(static_cast<int>(std::lround(time_ * player_->fps()))).node; }
+
+int MotionStream::clip_frame() const {
+  const int f = static_cast<int>(std::lround(time_ * player_->fps()));
+  const Piece& p = piece_at(f);
+  const int frames = graph_->set().clips[static_cast<size_t>(p.node)].clip.frame_count();
+  return std::clamp(p.first + (f - p.stream_first), 0, frames - 1);
+}
+
+FrameContacts MotionStream::contacts() const {
+  const MotionClip& mc = graph_->set().clips[static_cast<size_t>(node())];
+  if (mc.contacts.empty()) return FrameContacts{};
+  return mc.contacts[static_cast<size_t>(std::clamp(clip_frame(), 0, static_cast<int>(mc.contacts.size()) - 1))];
+}
+
+int MotionStream::queued_node() const { return pieces_.back().node; }
+
+}  // namespace prep

@@ -1,0 +1,172 @@
+#include "engine/world/policy_cache.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+
+#include "engine/control/action_effects.h"
+#include "engine/control/environment.h"
+#include "engine/util/error.h"
+#include "engine/util/files.h"
+
+namespace prep {
+
+namespace {
+
+// Next(m) among the core motions, from the graph (node i is clip i). A core motion with no successor but
+// itself in the graph would strand the controller, so then every core motion may follow it (the core nodes
+// of a hierarchical motion graph are meant to be joined, Sec. 4.1; the world cross-fades where the graph
+// has no edge, world.cpp control()).
+std::vector<std::vector<int>> core_next(const MotionSet& set, const MotionGraph& graph, const std::vector<const MotionClip*>& core) {
+  std::vector<int> node_of;
+  for (const MotionClip* c : core) node_of.push_back(static_cast<int>(c - set.clips.data()));
+  std::vector<std::vector<int>> next(core.size());
+  for (size_t m = 0; m < core.size(); ++m) {
+    for (size_t n = 0; n < core.size(); ++n) {
+      const auto& succ = graph.next(node_of[m]);
+      if (std::find(succ.begin(), succ.end(), node_of[n]) != succ.end()) next[m].push_back(static_cast<int>(n));
+    }
+    const bool only_itself = next[m].empty() || (next[m].size() == 1 && next[m][0] == static_cast<int>(m));
+    if (only_itself) {
+      next[m].clear();
+      for (size_t n = 0; n < core.size(); ++n) next[m].push_back(static_cast<int>(n));
+    }
+  }
+  return next;
+}
+
+bool same_table(const ActionTable& a, const ActionTable& b) {
+  if (a.motions != b.motions || a.alpha_levels != b.alpha_levels || a.motion_names != b.motion_names ||
+      !(a.curve == b.curve) || a.effects.size() != b.effects.size())
+    return false;
+  for (size_t i = 0; i < a.effects.size(); ++i) {
+    const ActionEffect &x = a.effects[i], &y = b.effects[i];
+    // The policy file stores floats exactly; allow for nothing but rounding of recomputation.
+    if (std::abs(x.forward - y.forward) > 1e-5f || std::abs(x.left - y.left) > 1e-5f || std::abs(x.turn - y.turn) > 1e-5f ||
+        std::abs(x.duration - y.duration) > 1e-5f)
+      return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+Policy train_policy(const MotionSet& set, const MotionGraph& graph, const Params& params, const TrainingOptions& options) {
+  const ActionTable table = tabulate_action_effects(set, params);
+  const std::vector<const MotionClip*> core = core_clips(set, params.quantization);
+  const StateSpace states(params.quantization, table.motions);
+  const ActionSpace actions(table.motions, table.alpha_levels, core_next(set, graph, core));
+  const Environment env(states, actions, table, params.reward);
+  const TrainingResult r = train_sarsa(env, params.sarsa, options);
+
+  Policy p;
+  p.params_hash = policy_params_hash(params);
+  p.quantization = params.quantization;
+  p.table = table;
+  for (int m = 0; m < actions.motions(); ++m) p.allowed_masks.push_back(actions.allowed_mask(m));
+  p.steps = r.steps;
+  p.episodes = r.episodes;
+  p.converged = r.converged;
+  p.seed = params.sarsa.seed;
+  p.threads = params.sarsa.threads;
+  p.states = states.size();
+  p.actions = actions.size();
+  p.q = r.q;
+  return p;
+}
+
+std::string default_policy_cache_dir() {
+  if (const char* d = std::getenv("PREP_CACHE_DIR"); d && *d) return d;
+  if (const char* d = std::getenv("XDG_CACHE_HOME"); d && *d) return std::string(d) + "/prep";
+  if (const char* d = std::getenv("HOME"); d && *d) return std::string(d) + "/.cache/prep";
+  return source_dir() + "/build/cache";
+}
+
+std::string policy_cache_path(const std::string& cache_dir, const std::string& set_name, const Params& params) {
+  char hash[17];
+  std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(policy_params_hash(params)));
+  std::string name = set_name.empty() ? "set" : set_name;
+  for (char& c : name)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_')) c = '_';
+  return cache_dir + "/policy-" + name + "-" + hash + ".bin";
+}
+
+std::shared_ptr<const Policy> load_cached_policy(const MotionSet& set, const std::string& cache_dir, const Params& params) {
+  const std::string path = policy_cache_path(cache_dir, set.name, params);
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) return nullptr;
+  try {
+    auto p = std::make_shared<Policy>(load_policy(path, params));
+    if (!same_table(p->table, tabulate_action_effects(set, params))) return nullptr;
+    return p;
+  } catch (const InputError&) {
+    return nullptr;  // stale or damaged: retrain and overwrite
+  }
+}
+
+std::shared_ptr<const Policy> load_or_train_policy(const MotionSet& set, const MotionGraph& graph, const Params& params,
+                                                   const std::string& cache_dir, const TrainingOptions& options,
+                                                   bool* trained) {
+  if (auto cached = load_cached_policy(set, cache_dir, params)) {
+    if (trained) *trained = false;
+    return cached;
+  }
+  auto p = std::make_shared<Policy>(train_policy(set, graph, params, options));
+  if (trained) *trained = true;
+  try {
+    std::error_code ec;
+    std::filesystem::create_directories(cache_dir, ec);
+    save_policy(*p, policy_cache_path(cache_dir, set.name, params));
+  } catch (const std::exception&) {
+    // A read-only cache costs a retraining next time, nothing more.
+  }
+  return p;
+}
+
+PolicyJob::PolicyJob(const MotionSet& set, const MotionGraph& graph, const Params& params, std::string cache_dir)
+    : max_steps_(std::max<std::int64_t>(1, params.sarsa.max_steps)), status_("loading") {
+  thread_ = std::thread([this, &set, &graph, params, cache_dir = std::move(cache_dir)] {
+    try {
+      TrainingOptions options;
+      options.progress = [this](const TrainingProgress& p) {
+        steps_.store(p.steps);
+        std::lock_guard<std::mutex> lock(mutex_);
+        status_ = "training: " + std::to_string(p.steps) + " steps";
+      };
+      bool trained = false;
+      auto p = load_or_train_policy(set, graph, params, cache_dir, options, &trained);
+      std::lock_guard<std::mutex> lock(mutex_);
+      policy_ = std::move(p);
+      trained_.store(trained);
+      status_ = trained ? "trained" : "cached";
+    } catch (const std::exception& e) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      error_ = std::current_exception();
+      status_ = e.what();
+    }
+    done_.store(true);
+  });
+}
+
+PolicyJob::~PolicyJob() {
+  if (thread_.joinable()) thread_.join();
+}
+
+float PolicyJob::progress() const {
+  if (done_.load()) return 1.0f;
+  return std::min(1.0f, static_cast<float>(steps_.load()) / static_cast<float>(max_steps_));
+}
+
+std::string PolicyJob::status() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return status_;
+}
+
+std::shared_ptr<const Policy> PolicyJob::result() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (error_) std::rethrow_exception(error_);
+  return policy_;
+}
+
+}  // namespace prep

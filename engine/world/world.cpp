@@ -1,0 +1,657 @@
+#include "engine/world/world.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+
+#include "engine/control/action_effects.h"
+#include "engine/graph/reference_posture.h"
+#include "engine/library/builtin.h"
+#include "engine/library/generated.h"
+#include "engine/motion/kinematics.h"
+#include "engine/synthesis/preparation_run.h"
+#include "engine/util/error.h"
+#include "engine/util/files.h"
+#include "engine/world/motion_stream.h"
+#include "engine/world/policy_cache.h"
+
+namespace prep {
+
+namespace {
+
+constexpr float kPi = 3.14159265358979f;
+const float kCos45 = std::cos(kPi / 4.0f);
+
+glm::vec2 forward_of(float heading) { return {std::sin(heading), std::cos(heading)}; }
+glm::vec2 left_of(float heading) { return {std::cos(heading), -std::sin(heading)}; }
+glm::vec2 floor_xz(const glm::vec3& p) { return {p.x, p.z}; }
+
+bool is_across(ObjectType t) { return t == ObjectType::Bar || t == ObjectType::Beam || t == ObjectType::Hurdle; }
+
+float smoothstep(float x) {
+  x = std::clamp(x, 0.0f, 1.0f);
+  return x * x * (3.0f - 2.0f * x);
+}
+
+// Where a target clip meets its object, in the clip's coordinates on the floor (x, z).
+// - Built-in obstacle clips: the middle of the obstacle they were made for (library::obstacle_of).
+// - Kicks and punches: the farthest point the striking foot (toe tips) or hand (wrist) reaches ahead of
+//   the T_p root during the target movement (T_t to one second after it).
+// - Other obstacle clips (a manifest's crawl, duck, jump): the root's position half a second after T_t,
+//   about where the body passes the obstacle.
+glm::vec2 interaction_point(const MotionSet& set, const MotionClip& mc, TargetAction action, int reference_frame) {
+  if (set.name == "builtin") {
+    const library::Obstacle o = library::obstacle_of(mc.clip.name);
+    if (o.height > 0.0f) return {0.0f, 0.5f * (o.z_near + o.z_far)};
+  }
+  const Clip& clip = mc.clip;
+  const int t_t = std::clamp(mc.target_frame, 0, clip.frame_count() - 1);
+  const int end = std::min(clip.frame_count() - 1, t_t + static_cast<int>(std::lround(clip.fps)));
+  const Pose& ref = clip.frames[static_cast<size_t>(reference_frame)];
+  const glm::vec2 origin = floor_xz(ref.root_position);
+  const glm::vec2 fwd = forward_of(heading_of(ref.rotations[0]));
+  std::vector<int> effectors;
+  std::vector<bool> end_site;
+  const BodyMap& body = set.body;
+  if (action == TargetAction::Kick) {
+    for (const auto& leg : body.legs)
+      if (leg.toe_tip_joint >= 0) effectors.push_back(leg.toe_tip_joint);
+  } else if (action == TargetAction::PunchLeft) {
+    effectors.push_back(body.arms[kLeft].wrist);
+  } else if (action == TargetAction::PunchRight) {
+    effectors.push_back(body.arms[kRight].wrist);
+  }
+  effectors.erase(std::remove(effectors.begin(), effectors.end(), -1), effectors.end());
+  if (effectors.empty()) {
+    const int f = std::min(clip.frame_count() - 1, t_t + static_cast<int>(std::lround(0.5f * clip.fps)));
+    return floor_xz(clip.frames[static_cast<size_t>(f)].root_position);
+  }
+  std::vector<glm::vec3> positions;
+  std::vector<glm::quat> rotations;
+  glm::vec2 best = origin;
+  float best_forward = -std::numeric_limits<float>::infinity();
+  for (int f = t_t; f <= end; ++f) {
+    forward_kinematics(*set.skeleton, clip.frames[static_cast<size_t>(f)], positions, &rotations);
+    for (int j : effectors) {
+      const bool kick = action == TargetAction::Kick;
+      const glm::vec3 p = kick && set.skeleton->joints[static_cast<size_t>(j)].has_end_site
+                              ? end_site_position(*set.skeleton, j, positions, rotations)
+                              : positions[static_cast<size_t>(j)];
+      const float ahead = glm::dot(floor_xz(p) - origin, fwd);
+      if (ahead > best_forward) {
+        best_forward = ahead;
+        best = floor_xz(p);
+      }
+    }
+  }
+  return best;
+}
+
+std::optional<Role> role_of(TargetAction a) { return parse_role(role_name_of(a)); }
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------------------
+// Assets
+
+std::shared_ptr<const MotionSet> load_scenario_motions(const Scenario& scenario, const Params& params) {
+  if (scenario.motions == "builtin") return std::make_shared<const MotionSet>(make_builtin_motion_set(params));
+  const std::string path = scenario.motions.front() == '/' ? scenario.motions : source_dir() + "/" + scenario.motions;
+  return std::make_shared<const MotionSet>(load_motion_set(path, params));
+}
+
+Params load_scenario_params(const Scenario& scenario) {
+  return scenario.params_file.empty() ? Params{} : load_params(scenario.params_file);
+}
+
+std::shared_ptr<const WorldAssets> prepare_world_assets(const Scenario& scenario, const Params& params,
+                                                        const std::string& cache_dir, bool* trained) {
+  auto assets = std::make_shared<WorldAssets>(make_world_assets(load_scenario_motions(scenario, params), params));
+  assets->policy = load_or_train_policy(*assets->set, *assets->graph, params, cache_dir, {}, trained);
+  return assets;
+}
+
+WorldAssets make_world_assets(std::shared_ptr<const MotionSet> set, const Params& params) {
+  WorldAssets a;
+  a.params = params;
+  a.set = set;
+  a.graph = std::make_shared<const MotionGraph>(MotionGraph::build(*set, params.graph));
+  a.synthesizer = std::make_shared<const Synthesizer>(*set, params);
+  const std::string source = set->manifest_path.empty() ? set->name : set->manifest_path;
+
+  for (const MotionClip* c : core_clips(*set, params.quantization)) a.core_nodes.push_back(static_cast<int>(c - set->clips.data()));
+  a.idle_node = find_cyclic_clip(*set, Role::Idle);
+  if (a.idle_node < 0) a.idle_node = find_cyclic_clip(*set, Role::Walk);
+  if (a.idle_node < 0) throw InputError(source, "the motion set has neither a cyclic idle nor a cyclic walk clip");
+
+  a.targets.resize(kTargetActionCount);
+  for (int k = 0; k < kTargetActionCount; ++k) {
+    TargetMotion& t = a.targets[static_cast<size_t>(k)];
+    t.action = static_cast<TargetAction>(k);
+    const auto role = role_of(t.action);
+    for (size_t i = 0; i < set->clips.size() && t.clip < 0; ++i)
+      if (role && set->clips[i].role == *role && set->clips[i].target_frame >= 0) t.clip = static_cast<int>(i);
+    if (t.clip < 0) continue;
+    const MotionClip& mc = set->clips[static_cast<size_t>(t.clip)];
+    t.reference_frame = find_reference_posture(*set, t.clip, params).frame;  // Sec. 4.2
+    t.reference = mc.clip.frames[static_cast<size_t>(t.reference_frame)];
+    const glm::vec2 origin = floor_xz(t.reference.root_position);
+    const float h = heading_of(t.reference.rotations[0]);
+    const glm::vec2 q = interaction_point(*set, mc, t.action, t.reference_frame) - origin;
+    t.reach = glm::dot(q, forward_of(h));
+    t.lateral = glm::dot(q, left_of(h));
+  }
+  return a;
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Per-character runtime state
+
+struct World::Runtime {
+  explicit Runtime(const MotionGraph& graph) : stream(graph) {}
+  MotionStream stream;
+  std::unique_ptr<Controller> controller;
+  SynthesisState synthesis;
+  SynthesisScratch scratch;
+  float next_decision = 0.0f;
+  bool reseed = false;           // the next synthesized frame continues from the current position
+  Pose fade_from;                // cross-fade from this pose ...
+  float fade_left = 0.0f;        // ... over the remaining seconds
+  float fade_total = 0.0f;
+  int target_object = -1, target_character = -1;
+  bool struck = false;           // the target movement (T_t) was reached
+  std::vector<glm::vec3> positions, centroids;
+  std::vector<glm::quat> rotations;
+};
+
+World::World(const Scenario& scenario, std::shared_ptr<const WorldAssets> assets)
+    : scenario_(scenario), assets_(std::move(assets)), params_(assets_->params), synthesizer_(assets_->synthesizer),
+      policy_(assets_->policy), auto_launch_(scenario.auto_launch) {
+  if (!policy_) throw std::invalid_argument("world: the assets hold no policy (train or load one first)");
+  if (scenario_.user() < 0) throw std::invalid_argument("world: the scenario has no user character");
+
+  auto add_character = [&](glm::vec2 position, float heading, Control control, TargetAction met_with, int object) {
+    WorldCharacter c;
+    c.control = control;
+    c.met_with = met_with;
+    c.object = object;
+    c.position = position;
+    c.heading = heading;
+    c.goal = scenario_.goal;
+    characters_.push_back(c);
+    auto rt = std::make_unique<Runtime>(*assets_->graph);
+    rt->controller = std::make_unique<Controller>(policy_, params_);
+    const auto idle = std::find(assets_->core_nodes.begin(), assets_->core_nodes.end(), assets_->idle_node);
+    rt->controller->reset(idle == assets_->core_nodes.end() ? 0 : static_cast<int>(idle - assets_->core_nodes.begin()), 0);
+    rt->stream.start(assets_->idle_node, -1, position, heading);
+    rt->scratch = synthesizer_->make_scratch();
+    runtime_.push_back(std::move(rt));
+  };
+  for (const auto& c : scenario_.characters) {
+    if (c.control == Control::User) user_ = static_cast<int>(characters_.size());
+    add_character(c.position, c.heading, c.control, c.action, -1);
+  }
+  for (size_t i = 0; i < scenario_.objects.size(); ++i) {
+    const ScenarioObject& o = scenario_.objects[i];
+    WorldObject w;
+    w.spec = o;
+    w.position = {o.position.x, 0.0f, o.position.y};
+    if (o.type == ObjectType::Opponent) {
+      w.character = static_cast<int>(characters_.size());
+      add_character(o.position, o.heading, Control::Opponent, o.action, static_cast<int>(i));
+    }
+    objects_.push_back(w);
+  }
+  for (size_t i = 0; i < characters_.size(); ++i) {
+    characters_[i].pose = runtime_[i]->stream.pose();
+    update_balance(static_cast<int>(i));
+  }
+}
+
+World::~World() = default;
+
+void World::set_params(const Params& params) {
+  params_ = params;
+  synthesizer_ = std::make_shared<const Synthesizer>(*assets_->set, params_);
+  for (auto& rt : runtime_) rt->scratch = synthesizer_->make_scratch();
+}
+
+void World::set_policy(std::shared_ptr<const Policy> policy) {
+  if (!policy) throw std::invalid_argument("world: no policy given");
+  policy_ = std::move(policy);
+  for (size_t i = 0; i < runtime_.size(); ++i) {
+    const int motion = runtime_[i]->controller->motion(), level = runtime_[i]->controller->alpha_level();
+    runtime_[i]->controller = std::make_unique<Controller>(policy_, params_);
+    runtime_[i]->controller->reset(std::min(motion, policy_->table.motions - 1), level);
+  }
+}
+
+void World::set_goal(glm::vec2 goal) {
+  WorldCharacter& u = characters_[static_cast<size_t>(user_)];
+  u.goal.assign(1, goal);
+  u.reached_goal = false;
+  u.reached_time = -1.0f;
+}
+
+void World::run(float seconds) {
+  const int n = static_cast<int>(std::lround(seconds / params_.runtime.fixed_dt));
+  for (int k = 0; k < n; ++k) step();
+}
+
+void World::step() {
+  const float dt = params_.runtime.fixed_dt;
+  time_ += dt;
+  ++ticks_;
+  for (int i = 0; i < static_cast<int>(characters_.size()); ++i) step_character(i);
+  // Kicked balls roll and slow down (rolling resistance of grass, about 1.5 m/s^2).
+  for (auto& o : objects_) {
+    const float speed = glm::length(o.velocity);
+    if (speed <= 0.0f) continue;
+    const float slower = std::max(0.0f, speed - 1.5f * dt);
+    o.velocity *= slower / speed;
+    o.position.x += o.velocity.x * dt;
+    o.position.z += o.velocity.y * dt;
+  }
+  alpha_history_.push_back({time_, characters_[static_cast<size_t>(user_)].alpha});
+  if (static_cast<int>(alpha_history_.size()) > kAlphaHistory) alpha_history_.erase(alpha_history_.begin());
+}
+
+// The launch point for an action at an object: where the character stands when the action's clip, entered
+// at T_p, meets the object. Across obstacles (bar, beam, hurdle) the approach is along the obstacle's
+// normal, at the character's own lateral place along it (kept within the obstacle's width); for balls and
+// characters it is along the line from the character to the object.
+glm::vec2 World::launch_point(int index, glm::vec2 object, float object_heading, bool across, TargetAction action) const {
+  const WorldCharacter& c = characters_[static_cast<size_t>(index)];
+  const TargetMotion& t = assets_->target(action);
+  if (across) {
+    glm::vec2 n = forward_of(object_heading);
+    if (glm::dot(object - c.position, n) < 0.0f) n = -n;  // the approach runs from the character's side
+    const glm::vec2 along = left_of(object_heading);
+    const float lateral = glm::dot(c.position - object, along);
+    return object + lateral * along - t.reach * n;
+  }
+  const glm::vec2 d = object - c.position;
+  const float len = glm::length(d);
+  const glm::vec2 dir = len > 1e-4f ? d / len : forward_of(c.heading);
+  return object - t.reach * dir;
+}
+
+// Sec. 7.2: the source of influence. User: the closest opponent still fighting (fight), else the closest
+// unused object in the facing direction (within 90 degrees; an across obstacle also within its width).
+// Opponents: the user's character.
+void World::choose_source(int index) {
+  WorldCharacter& c = characters_[static_cast<size_t>(index)];
+  c.has_source = false;
+  c.source_object = c.source_character = -1;
+  const glm::vec2 fwd = forward_of(c.heading);
+  if (c.control == Control::Opponent) {
+    const WorldCharacter& u = characters_[static_cast<size_t>(user_)];
+    if (c.defeated) return;
+    c.has_source = true;
+    c.source_character = user_;
+    c.prepared_for = c.met_with;
+    c.source_object_position = u.position;
+    c.source = launch_point(index, u.position, 0.0f, false, c.met_with);
+    return;
+  }
+  float best = std::numeric_limits<float>::infinity();
+  for (int k = 0; k < static_cast<int>(characters_.size()); ++k) {
+    const WorldCharacter& o = characters_[static_cast<size_t>(k)];
+    if (o.control != Control::Opponent || o.defeated) continue;
+    const float d = glm::length(o.position - c.position);
+    if (d < best) {
+      best = d;
+      c.has_source = true;
+      c.source_character = k;
+      c.prepared_for = o.met_with;
+      c.source_object_position = o.position;
+    }
+  }
+  if (c.has_source) {
+    c.source = launch_point(index, c.source_object_position, 0.0f, false, c.prepared_for);
+    return;
+  }
+  for (int k = 0; k < static_cast<int>(objects_.size()); ++k) {
+    const WorldObject& o = objects_[static_cast<size_t>(k)];
+    if (o.used || o.spec.type == ObjectType::Opponent || assets_->target(o.spec.action).clip < 0) continue;
+    const glm::vec2 p = floor_xz(o.position), d = p - c.position;
+    float distance;
+    if (is_across(o.spec.type)) {
+      const glm::vec2 n = forward_of(o.spec.heading), along = left_of(o.spec.heading);
+      if (std::fabs(glm::dot(c.position - p, along)) > 0.5f * o.spec.size.x) continue;  // passes beside it
+      distance = std::fabs(glm::dot(d, n));
+    } else {
+      distance = glm::length(d);
+    }
+    if (glm::dot(d, fwd) <= 0.0f) continue;  // behind: not in the facing direction
+    if (distance < best) {
+      best = distance;
+      c.has_source = true;
+      c.source_object = k;
+      c.prepared_for = o.spec.action;
+      c.source_object_position = p;
+    }
+  }
+  if (c.has_source) {
+    const WorldObject& o = objects_[static_cast<size_t>(c.source_object)];
+    c.source = launch_point(index, c.source_object_position, o.spec.heading, is_across(o.spec.type), c.prepared_for);
+  }
+}
+
+// The controller: a decision per footstep (the duration of the chosen action), and the motion stream kept
+// one motion ahead.
+void World::control(int index) {
+  WorldCharacter& c = characters_[static_cast<size_t>(index)];
+  Runtime& rt = *runtime_[static_cast<size_t>(index)];
+  Controller& ctl = *rt.controller;
+  if (time_ >= rt.next_decision) {
+    ControlInput in;
+    in.position = c.position;
+    in.heading = c.heading;
+    if (c.control == Control::Opponent) in.goal = c.has_source ? c.source : c.position;
+    else in.goal = c.goal.empty() ? c.position : c.goal.front();
+    // No source: one far ahead, beyond the last distance bin, so nothing calls for preparation.
+    in.source = c.has_source ? c.source : c.position + 100.0f * forward_of(c.heading);
+    const ControlDecision d = ctl.decide(in);
+    c.motion = d.motion;
+    c.chosen_alpha = d.alpha;
+    rt.next_decision = time_ + std::max(ctl.effect(d.action).duration, params_.runtime.fixed_dt);
+  }
+  if (rt.stream.needs_next()) {
+    const bool stay = (c.control == Control::User && c.reached_goal) || (c.control == Control::Opponent && c.defeated);
+    const int wanted = stay ? assets_->idle_node : assets_->core_nodes[static_cast<size_t>(ctl.motion())];
+    if (!rt.stream.queue(wanted)) {
+      // The graph has no edge to the wanted motion from here (e.g. a set whose idle joins nothing):
+      // switch anyway, placed where the character stands and cross-faded over GraphParams::blend_s.
+      rt.fade_from = c.pose;
+      rt.fade_total = rt.fade_left = params_.graph.blend_s;
+      rt.stream.start(wanted, -1, c.position, c.heading);
+      rt.reseed = true;
+    }
+  }
+}
+
+bool World::start_target(int index, TargetAction action, int object, int target_character, bool automatic) {
+  WorldCharacter& c = characters_[static_cast<size_t>(index)];
+  Runtime& rt = *runtime_[static_cast<size_t>(index)];
+  const TargetMotion& t = assets_->target(action);
+  if (c.in_target || t.clip < 0) return false;
+  LaunchRecord r;
+  r.character = index;
+  r.action = action;
+  r.object = object;
+  r.target_character = target_character;
+  r.alpha_at_launch = c.alpha;
+  r.time = time_;
+  r.automatic = automatic;
+  launches_.push_back(r);
+  if (object >= 0) objects_[static_cast<size_t>(object)].used = true;
+
+  // Enter the target clip at T_p, where the prepared character stands and faces; then back to walking.
+  rt.fade_from = c.pose;
+  rt.fade_total = rt.fade_left = params_.graph.blend_s;
+  rt.stream.start(t.clip, t.reference_frame, c.position, c.heading);
+  const int walk = find_cyclic_clip(*assets_->set, Role::Walk);
+  bool queued = walk >= 0 && rt.stream.queue(walk);
+  for (size_t k = 0; !queued && k < assets_->core_nodes.size(); ++k) queued = rt.stream.queue(assets_->core_nodes[k]);
+  c.in_target = true;
+  c.playing = action;
+  c.clip = t.clip;
+  rt.target_object = object;
+  rt.target_character = target_character;
+  rt.struck = false;
+  return true;
+}
+
+bool World::launch(TargetAction action) {
+  const WorldCharacter& u = characters_[static_cast<size_t>(user_)];
+  int object = -1, target_character = -1;
+  if (u.has_source && u.prepared_for == action) {
+    object = u.source_object;
+    target_character = u.source_character;
+  }
+  return start_target(user_, action, object, target_character, false);
+}
+
+void World::try_auto_launch(int index) {
+  WorldCharacter& c = characters_[static_cast<size_t>(index)];
+  if (c.in_target || !c.has_source) return;
+  if (c.control == Control::User && !auto_launch_) return;
+  if (c.control == Control::Opponent && (c.defeated || time_ - c.last_attack < rules_.cooldown_s)) return;
+  const TargetMotion& t = assets_->target(c.prepared_for);
+  if (t.clip < 0) return;
+  const glm::vec2 fwd = forward_of(c.heading);
+  const glm::vec2 to_object = c.source_object_position - c.position;
+  bool go = false;
+  if (c.source_object >= 0 && is_across(objects_[static_cast<size_t>(c.source_object)].spec.type)) {
+    // The launch line: the character's distance to it along the approach.
+    const glm::vec2 approach = c.source_object_position - c.source;  // reach * approach direction
+    const float len = glm::length(approach);
+    if (len > 1e-4f) {
+      const glm::vec2 dir = approach / len;
+      const float along = glm::dot(to_object, dir);
+      go = glm::dot(fwd, dir) >= kCos45 && along <= t.reach && along > 0.0f;
+    }
+  } else {
+    const float d = glm::length(to_object);
+    const float ahead = glm::dot(to_object, fwd);
+    // A character or a ball: within reach (and the source radius for a target that moves), ahead.
+    go = ahead >= kCos45 * d && d <= t.reach + params_.reward.source_radius * (c.source_character >= 0 ? 1.0f : 0.0f) &&
+         d > 0.0f;
+  }
+  if (!go) return;
+  if (start_target(index, c.prepared_for, c.source_object, c.source_character, true) && c.control == Control::Opponent)
+    c.last_attack = time_;
+}
+
+void World::update_goal(int index) {
+  WorldCharacter& c = characters_[static_cast<size_t>(index)];
+  if (c.control != Control::User) return;
+  while (!c.goal.empty() && glm::length(c.goal.front() - c.position) <= params_.reward.goal_radius) {
+    c.goal.erase(c.goal.begin());
+    if (c.goal.empty()) {
+      c.reached_goal = true;
+      c.reached_time = time_;
+    }
+  }
+}
+
+// The COM and the support polygon of this tick's pose (Sec. 5.3), for the panels and for evaluation.
+void World::update_balance(int index) {
+  WorldCharacter& c = characters_[static_cast<size_t>(index)];
+  Runtime& rt = *runtime_[static_cast<size_t>(index)];
+  const MotionSet& set = *assets_->set;
+  forward_kinematics(*set.skeleton, c.pose, rt.positions, &rt.rotations);
+  segment_centroids(*set.skeleton, set.mass, rt.positions, rt.rotations, rt.centroids);
+  c.com = center_of_mass(set.mass, rt.centroids);
+  c.contacts = rt.stream.contacts();
+  const FootPoints feet = foot_points(*set.skeleton, set.body, rt.positions, rt.rotations);
+  c.support = support_polygon(feet, c.contacts, params_.contacts);
+  c.com_in_support = !c.support.empty() && c.support.contains({c.com.x, c.com.z});
+}
+
+void World::step_character(int index) {
+  WorldCharacter& c = characters_[static_cast<size_t>(index)];
+  Runtime& rt = *runtime_[static_cast<size_t>(index)];
+  const float dt = params_.runtime.fixed_dt;
+
+  choose_source(index);
+  if (!c.in_target) control(index);
+  const float alpha = rt.controller->tick();  // Gaussian-smoothed (controller.h)
+  rt.stream.advance(dt);
+
+  if (c.in_target) {
+    const MotionClip& mc = assets_->set->clips[static_cast<size_t>(c.clip)];
+    if (rt.stream.node() != c.clip) {
+      // Back to locomotion through the graph edge: the controller resumes from the core motion playing.
+      c.in_target = false;
+      const auto core = std::find(assets_->core_nodes.begin(), assets_->core_nodes.end(), rt.stream.node());
+      rt.controller->reset(core == assets_->core_nodes.end() ? rt.controller->motion() : static_cast<int>(core - assets_->core_nodes.begin()),
+                           rt.controller->alpha_level());
+      rt.next_decision = time_;
+      rt.reseed = true;
+      rt.fade_from = c.pose;
+      rt.fade_total = rt.fade_left = params_.graph.blend_s;
+    } else if (!rt.struck && rt.stream.clip_frame() >= mc.target_frame) {
+      rt.struck = true;  // the target movement begins: the ball flies, the opponent is hit
+      if (c.playing == TargetAction::Kick && rt.target_object >= 0) {
+        // The ball leaves at a typical pass speed (6 m/s) along the kick.
+        objects_[static_cast<size_t>(rt.target_object)].velocity = 6.0f * forward_of(c.heading);
+      }
+      if (rt.target_character >= 0 && characters_[static_cast<size_t>(rt.target_character)].control == Control::Opponent)
+        characters_[static_cast<size_t>(rt.target_character)].defeated = true;
+    } else if (!rt.stream.has_ahead(0.0f)) {
+      // The clip ended without an edge back (a set without one): stand where it ended.
+      c.in_target = false;
+      rt.stream.start(assets_->idle_node, -1, c.position, c.heading);
+      rt.reseed = true;
+    }
+  }
+
+  Pose out = synthesizer_->make_pose();
+  c.alpha = alpha;
+  if (c.in_target) {
+    out = rt.stream.pose();
+    c.report = SynthesisReport{};
+  } else {
+    const TargetMotion& t = assets_->target(c.prepared_for);
+    SynthesisInput in;
+    in.locomotion = &rt.stream.pose();
+    in.contacts = rt.stream.contacts();
+    in.reference = t.clip >= 0 ? &t.reference : &rt.stream.pose();
+    in.alpha = t.clip >= 0 ? alpha : 0.0f;
+    in.dt = dt;
+    if (rt.reseed) {
+      // Continue from where the character stands: the synthesizer's root restarts here, with no step.
+      rt.synthesis = SynthesisState{};
+      rt.synthesis.started = true;
+      rt.synthesis.root_xz = c.position;
+      in.has_displacement = true;
+      in.displacement = glm::vec3(0.0f);
+      rt.reseed = false;
+    }
+    synthesizer_->step(in, rt.synthesis, rt.scratch, out, &c.report);
+    c.clip = rt.stream.node();
+  }
+  if (rt.fade_left > 0.0f) {
+    // Cross-fade from the pose before a switch (launch, return, restart) into the new stream.
+    Pose faded;
+    const float w = smoothstep(1.0f - rt.fade_left / rt.fade_total);
+    interpolate(rt.fade_from, out, w, faded);
+    faded.root_position.x = out.root_position.x;
+    faded.root_position.z = out.root_position.z;
+    out = faded;
+    rt.fade_left -= dt;
+  }
+  c.pose = out;
+  c.position = floor_xz(out.root_position);
+  c.heading = heading_of(rt.stream.pose().rotations[0]);
+  update_balance(index);
+  update_goal(index);
+  try_auto_launch(index);
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Views and summaries
+
+WorldScene World::scene() const {
+  WorldScene s;
+  const WorldCharacter& u = characters_[static_cast<size_t>(user_)];
+  for (int i = 0; i < static_cast<int>(characters_.size()); ++i) {
+    const WorldCharacter& c = characters_[static_cast<size_t>(i)];
+    WorldScene::Character v;
+    v.skeleton = assets_->set->skeleton;
+    v.pose = &c.pose;
+    v.user = i == user_;
+    v.is_source = u.source_character == i;
+    v.alpha = c.alpha;
+    v.com = c.com;
+    v.support = &c.support;
+    s.characters.push_back(v);
+  }
+  for (int k = 0; k < static_cast<int>(objects_.size()); ++k) {
+    const WorldObject& o = objects_[static_cast<size_t>(k)];
+    if (o.spec.type == ObjectType::Opponent) continue;
+    WorldScene::Object v;
+    v.type = o.spec.type;
+    v.action = o.spec.action;
+    v.position = o.position;
+    v.heading = o.spec.heading;
+    v.size = o.spec.size;
+    v.is_source = u.source_object == k;
+    v.used = o.used;
+    s.objects.push_back(v);
+  }
+  for (const glm::vec2& g : u.goal) s.goal.push_back({g.x, 0.0f, g.y});
+  s.goal_radius = params_.reward.goal_radius;
+  s.source_radius = params_.reward.source_radius;
+  if (u.has_source) {
+    s.source = glm::vec3(u.source_object_position.x, 0.0f, u.source_object_position.y);
+    s.launch_point = glm::vec3(u.source.x, 0.0f, u.source.y);
+  }
+  s.alpha_history = &alpha_history_;
+  return s;
+}
+
+RunSummary summarize(const World& world) {
+  RunSummary s;
+  s.scenario = world.scenario().name;
+  s.seconds = world.time();
+  s.launches = world.launches();
+  s.goal_reached = world.goal_reached();
+  s.goal_time = world.characters()[static_cast<size_t>(world.user())].reached_time;
+  for (const WorldObject& o : world.objects()) {
+    if (o.used) continue;
+    if (o.spec.type == ObjectType::Opponent && world.characters()[static_cast<size_t>(o.character)].defeated) continue;
+    char text[96];
+    std::snprintf(text, sizeof text, "%s at (%.2f, %.2f)", object_type_name(o.spec.type), o.spec.position.x, o.spec.position.y);
+    s.unused_objects.push_back(text);
+  }
+  return s;
+}
+
+std::string summary_json(const RunSummary& summary, const World& world) {
+  nlohmann::json j;
+  j["scenario"] = summary.scenario;
+  j["seconds"] = summary.seconds;
+  j["launches"] = nlohmann::json::array();
+  for (const LaunchRecord& r : summary.launches) {
+    nlohmann::json l;
+    l["action"] = target_action_name(r.action);
+    l["alpha_at_launch"] = r.alpha_at_launch;
+    l["time"] = r.time;
+    l["character"] = r.character;
+    l["control"] = control_name(world.characters()[static_cast<size_t>(r.character)].control);
+    l["automatic"] = r.automatic;
+    if (r.object >= 0) l["object"] = r.object;
+    if (r.target_character >= 0) l["target_character"] = r.target_character;
+    j["launches"].push_back(l);
+  }
+  j["goal_reached"] = summary.goal_reached;
+  if (summary.goal_reached) j["goal_time"] = summary.goal_time;
+  j["objects_without_launch"] = summary.unused_objects;
+  return j.dump(2);
+}
+
+std::string summary_text(const RunSummary& summary) {
+  std::string out = "scenario " + summary.scenario + ", " + std::to_string(summary.seconds) + " s\n";
+  char line[160];
+  for (const LaunchRecord& r : summary.launches) {
+    std::snprintf(line, sizeof line, "  %6.2f s  character %d  %-11s alpha_at_launch %.3f%s\n", r.time, r.character,
+                  target_action_name(r.action), r.alpha_at_launch, r.automatic ? "  (auto)" : "");
+    out += line;
+  }
+  if (summary.goal_reached) {
+    std::snprintf(line, sizeof line, "goal reached at %.2f s\n", summary.goal_time);
+    out += line;
+  } else {
+    out += "goal not reached\n";
+  }
+  for (const std::string& o : summary.unused_objects) out += "no launch at " + o + "\n";
+  return out;
+}
+
+}  // namespace prep

@@ -1,0 +1,255 @@
+// The world (Sec. 7.2): characters, objects, goals and sources of influence, and the fixed-step
+// simulation loop every front end drives (RuntimeParams::fixed_dt).
+//
+// Per tick and per character:
+//   source of influence (kick: the ball; fight: the closest opponent; obstacles: the closest obstacle in the
+//   facing direction) -> controller (a = {m, alpha}, Sec. 6, one decision per footstep) -> Gaussian-smoothed
+//   alpha -> the motion stream plays m through the motion graph -> Synthesizer::step (blend toward the T_p of
+//   the action the source calls for, trajectory, foot IK, balance) -> pose.
+//
+// Choices where the paper leaves it open (each also stated where it is coded):
+// - The source point the controller sees is the launch point of the object: where the character must
+//   stand, facing the object, for the target clip entered at its T_p frame to meet the object (a bar
+//   passes over the crawl, the foot meets the ball). "Reaching the source" (alpha forced to 1 in training)
+//   is thus reaching the spot where the action starts.
+// - A launch (user or auto) restarts the character's stream at the target clip's T_p frame, root placed
+//   where the character stands and facing where it faces: the prepared posture is T_p (alpha -> 1), so
+//   this entry is continuous; the remaining difference is cross-faded over GraphParams::blend_s. The
+//   target clip then returns to locomotion through a graph edge after T_t (MotionStream).
+// - Auto launch: when the object lies ahead (within 45 degrees of the facing) and its distance along the
+//   approach is at most the action's reach (the distance from the T_p root to the object in the clip),
+//   laterally within the obstacle's width (balls and opponents: within the source radius).
+// - Objects are used once (a kicked ball rolls away; a punched opponent stops fighting); obstacles behind
+//   the character or already passed stop being sources.
+// - Opponents: their own controller (the same policy) with the user's character as goal and source
+//   (the point at punch reach in front of it); they launch a punch when the user is within reach, at most
+//   once per OpponentRules::cooldown_s.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "engine/control/controller.h"
+#include "engine/control/policy.h"
+#include "engine/graph/motion_graph.h"
+#include "engine/motion/motion_set.h"
+#include "engine/motion/support_polygon.h"
+#include "engine/synthesis/synthesizer.h"
+#include "engine/world/scenario.h"
+
+namespace prep {
+
+class MotionStream;
+
+constexpr int kTargetActionCount = 6;
+
+// What the world knows about one target action of the motion set.
+struct TargetMotion {
+  TargetAction action = TargetAction::Kick;
+  int clip = -1;              // the target clip (graph node); -1: the set has none
+  int reference_frame = 0;    // T_p (Sec. 4.2)
+  Pose reference;             // T_p's pose
+  float reach = 0.0f;         // m: from the root at T_p, along its facing, to where the clip meets the object
+  float lateral = 0.0f;       // m: that point's offset to the left of the facing
+};
+
+// Everything a world needs that does not depend on the scenario: the motion set, its graph, the
+// synthesizer, the target motions and the controller's policy. Shared by worlds (and threads) read-only.
+struct WorldAssets {
+  Params params;
+  std::shared_ptr<const MotionSet> set;
+  std::shared_ptr<const MotionGraph> graph;
+  std::shared_ptr<const Synthesizer> synthesizer;
+  std::vector<TargetMotion> targets;   // indexed by TargetAction
+  std::vector<int> core_nodes;         // graph node of each policy core motion (index = policy motion)
+  int idle_node = -1;                  // where characters start and stop (the idle core clip, else walk)
+  std::shared_ptr<const Policy> policy;
+
+  const TargetMotion& target(TargetAction a) const { return targets[static_cast<size_t>(a)]; }
+};
+
+// Builds the graph, the T_p and reach of every target action and the synthesizer. The policy is set apart
+// (policy_cache.h). Throws InputError naming the set when a core role has no cyclic clip.
+WorldAssets make_world_assets(std::shared_ptr<const MotionSet> set, const Params& params);
+// The motion set a scenario names ("builtin" or a manifest path relative to the repository root).
+std::shared_ptr<const MotionSet> load_scenario_motions(const Scenario& scenario, const Params& params);
+// The Params a scenario names (its "params" file) or the defaults.
+Params load_scenario_params(const Scenario& scenario);
+// All of it, blocking: the scenario's motions, the assets, and the policy from the cache folder or trained
+// now (policy_cache.h). `trained` tells whether training ran.
+std::shared_ptr<const WorldAssets> prepare_world_assets(const Scenario& scenario, const Params& params,
+                                                        const std::string& cache_dir, bool* trained = nullptr);
+
+struct LaunchRecord {
+  int character = -1;
+  TargetAction action = TargetAction::Kick;
+  int object = -1;            // the object it was launched at (-1: none)
+  int target_character = -1;  // the character it was launched at (fights; -1: none)
+  float alpha_at_launch = 0;  // the smoothed alpha synthesis used on the tick of the launch
+  float time = 0;             // world time (s)
+  bool automatic = false;     // by the scenario's auto flag or an opponent's rules (not the user)
+};
+
+struct OpponentRules {
+  float cooldown_s = 2.5f;    // between two punches of one opponent
+};
+
+struct WorldObject {
+  ScenarioObject spec;
+  glm::vec3 position{0.0f};   // where it stands now (a kicked ball rolls)
+  glm::vec2 velocity{0.0f};   // m/s on the floor (a kicked ball)
+  bool used = false;          // its action was launched at it
+  int character = -1;         // for opponents: the character it is
+};
+
+struct WorldCharacter {
+  Control control = Control::User;
+  TargetAction met_with = TargetAction::PunchRight;  // opponents: the action the user meets it with
+  int object = -1;                                   // opponents: their object, if they came from one
+  bool defeated = false;                             // opponents: punched, no longer fighting
+
+  Pose pose;                  // the synthesized pose (world)
+  glm::vec2 position{0.0f};   // root on the floor (x, z)
+  float heading = 0.0f;
+  float alpha = 0.0f;         // the Gaussian-smoothed level of preparation synthesis used this tick
+  float chosen_alpha = 0.0f;  // the controller's last chosen level
+  int motion = -1;            // the policy core motion chosen last
+  int clip = -1;              // the clip playing now
+  bool in_target = false;     // playing a target motion
+  TargetAction playing = TargetAction::Kick;  // which, when in_target
+
+  bool has_source = false;
+  glm::vec2 source{0.0f};               // the source point the controller sees (the launch point)
+  glm::vec2 source_object_position{0.0f};  // the object or character that is the source
+  int source_object = -1;               // index into objects(), or -1
+  int source_character = -1;            // index into characters(), or -1
+  TargetAction prepared_for = TargetAction::Kick;  // whose T_p the synthesis blends toward
+
+  std::vector<glm::vec2> goal;  // waypoints left (front = current); empty when the last was reached
+  bool reached_goal = false;
+  float reached_time = -1.0f;
+
+  // Balance (Sec. 5.3) of this tick's pose.
+  glm::vec3 com{0.0f};
+  SupportPolygon support;
+  bool com_in_support = false;
+  FrameContacts contacts{};
+  SynthesisReport report;
+  float last_attack = -1e9f;
+};
+
+// The read-only scene for a renderer (app/render converts it; the world stays GL-free).
+struct WorldScene {
+  struct Character {
+    std::shared_ptr<const Skeleton> skeleton;
+    const Pose* pose = nullptr;
+    bool user = false;
+    bool is_source = false;            // the user's source of influence
+    float alpha = 0.0f;
+    glm::vec3 com{0.0f};
+    const SupportPolygon* support = nullptr;
+  };
+  struct Object {
+    ObjectType type = ObjectType::Ball;
+    TargetAction action = TargetAction::Kick;
+    glm::vec3 position{0.0f};
+    float heading = 0.0f;
+    glm::vec3 size{0.0f};
+    bool is_source = false;
+    bool used = false;
+  };
+  std::vector<Character> characters;
+  std::vector<Object> objects;          // opponents are characters, not objects, here
+  std::vector<glm::vec3> goal;          // the user's waypoints left (front = current)
+  float goal_radius = 0.4f;
+  std::optional<glm::vec3> source;      // the user's source of influence (object or opponent position)
+  std::optional<glm::vec3> launch_point;  // where the user will launch at it
+  float source_radius = 0.4f;
+  const std::vector<glm::vec2>* alpha_history = nullptr;  // the user's (time, alpha), last kAlphaHistory ticks
+};
+
+class World {
+ public:
+  static constexpr int kAlphaHistory = 600;  // ticks kept for the alpha plot (10 s at 60 Hz)
+
+  // The assets must hold a policy. Throws std::invalid_argument otherwise.
+  World(const Scenario& scenario, std::shared_ptr<const WorldAssets> assets);
+  ~World();
+  World(const World&) = delete;
+  World& operator=(const World&) = delete;
+
+  void step();                  // one tick of assets().params.runtime.fixed_dt
+  void run(float seconds);      // ticks until `seconds` more have passed
+  float time() const { return time_; }
+  int ticks() const { return ticks_; }
+
+  // User intent. launch(): the user character starts the target motion at once (false if it is already
+  // playing one or the set has no clip for it). set_goal(): a new single goal for the user.
+  bool launch(TargetAction action);
+  void set_goal(glm::vec2 goal);
+  void set_auto(bool on) { auto_launch_ = on; }
+  bool auto_launch() const { return auto_launch_; }
+  // Changes Params live (the demo's panels): the synthesizer is rebuilt; the policy stays (retrain it
+  // through policy_cache.h when policy_params_hash changes, then set_policy).
+  void set_params(const Params& params);
+  void set_policy(std::shared_ptr<const Policy> policy);
+
+  const Scenario& scenario() const { return scenario_; }
+  const WorldAssets& assets() const { return *assets_; }
+  const Params& params() const { return params_; }
+  const std::vector<WorldCharacter>& characters() const { return characters_; }
+  const std::vector<WorldObject>& objects() const { return objects_; }
+  const std::vector<LaunchRecord>& launches() const { return launches_; }
+  int user() const { return user_; }
+  bool goal_reached() const { return characters_[static_cast<size_t>(user_)].reached_goal; }
+  const std::vector<glm::vec2>& alpha_history() const { return alpha_history_; }
+
+  WorldScene scene() const;
+
+ private:
+  struct Runtime;
+  void step_character(int index);
+  void choose_source(int index);
+  void control(int index);
+  bool start_target(int index, TargetAction action, int object, int target_character, bool automatic);
+  void try_auto_launch(int index);
+  void update_goal(int index);
+  void update_balance(int index);
+  glm::vec2 launch_point(int index, glm::vec2 object, float object_heading, bool across, TargetAction action) const;
+
+  Scenario scenario_;
+  std::shared_ptr<const WorldAssets> assets_;
+  Params params_;
+  std::shared_ptr<const Synthesizer> synthesizer_;
+  std::shared_ptr<const Policy> policy_;
+  bool auto_launch_ = false;
+  float time_ = 0.0f;
+  int ticks_ = 0;
+  int user_ = 0;
+  OpponentRules rules_;
+  std::vector<WorldCharacter> characters_;
+  std::vector<WorldObject> objects_;
+  std::vector<std::unique_ptr<Runtime>> runtime_;
+  std::vector<LaunchRecord> launches_;
+  std::vector<glm::vec2> alpha_history_;
+};
+
+// A headless run: the scenario for `seconds`, launches and goal (what `prep run` and `prep-demo --json` print).
+struct RunSummary {
+  std::string scenario;
+  float seconds = 0;
+  std::vector<LaunchRecord> launches;
+  bool goal_reached = false;
+  float goal_time = -1;
+  std::vector<std::string> unused_objects;  // "bar at (0, 5)" for each object no action was launched at
+};
+RunSummary summarize(const World& world);
+std::string summary_json(const RunSummary& summary, const World& world);  // pretty JSON text
+std::string summary_text(const RunSummary& summary);
+
+}  // namespace prep
