@@ -3,6 +3,7 @@
 // and the ImGui panels are drawn into the image.
 #include <doctest/doctest.h>
 
+#include <filesystem>
 #include <set>
 
 #include "app/demo/demo_app.h"
@@ -12,6 +13,7 @@
 #include "app/render/renderer.h"
 #include "engine/motion/kinematics.h"
 #include "tests/render/test_scene.h"
+#include "tests/support/paths.h"
 
 using namespace prep;
 using namespace prep::render;
@@ -71,6 +73,8 @@ TEST_CASE("headless demo frame: character at its projected root and head, floor,
   app.camera = demo::default_camera(demo::clip_scene(motions.clips[0], 0.0f, false));
   for (int i = 0; i < demo::kSettleFrames; ++i) app.frame(1.0f / 60.0f);
   const Image image = context.read_pixels();
+  std::filesystem::create_directories(test::tmp_dir());
+  write_png(image, test::tmp_dir() + "/render_demo_frame.png");  // for a look by eye
   REQUIRE(image.width == 1280);
   REQUIRE(image.height == 720);
 
@@ -164,6 +168,8 @@ TEST_CASE("obstacles, ball, goal and source of influence appear where they stand
   renderer.draw(scene, camera, 0, 0, 800, 600);
   const Image image = context.read_pixels();
   const glm::mat4 vp = camera.view_projection(800.0f / 600.0f);
+  std::filesystem::create_directories(test::tmp_dir());
+  write_png(image, test::tmp_dir() + "/render_objects.png");  // for a look by eye
 
   CHECK(class_of_point(image, vp, {-1.5f, 0.65f + 0.05f, 0.0f}) == PixelClass::Obstacle);  // the bar, mid-span
   CHECK(class_of_point(image, vp, {1.5f, 0.4f - 0.06f, 0.0f}) == PixelClass::Obstacle);    // the hurdle's board
