@@ -4,11 +4,13 @@
 #include <cmath>
 
 #include "engine/library/rig.h"
+#include "engine/library/spline.h"
 
 namespace prep::library {
 namespace {
 constexpr float kDeg = 3.14159265f / 180.0f;
 constexpr float kGravity = 9.81f;
+constexpr float kLegHandover = 0.35f;  // s over which the legs pass from the walk to the keys and back
 }  // namespace
 
 Walker walk_in(const ActionSpec& spec) { return Walker(spec.gait, 0.0f, {0.0f, 0.0f}, 0.0f); }
@@ -76,11 +78,25 @@ GeneratedClip compose_action(const ActionSpec& spec) {
   Draft draft;
   draft.name = spec.name;
   draft.fps = fps;
-  const float t_begin = -spec.walk_in_s, t_end = spec.resume_time + spec.walk_out_s;
+  // Generated with a gait cycle of padding at both ends (cropped at the end), so that the supports
+  // running over the clip's first and last frames roll exactly as in the walk.
+  const float pad = spec.gait.cycle_s;
+  const float t_begin = -spec.walk_in_s - pad, t_end = spec.resume_time + spec.walk_out_s + pad;
   const int count = static_cast<int>(std::lround((t_end - t_begin) * fps)) + 1;
   for (int f = 0; f < count; ++f) {
     const float t = t_begin + static_cast<float>(f) / fps;
     DofPose d = t < 0.0f ? in.pose(t) : (t > spec.resume_time ? out.pose(t - spec.resume_time) : sample_keys(keys, t));
+    // Near the joins the legs keep walking a little longer (the trailing foot rolls off, the leading foot
+    // comes down as in the walk), handing over to the keyed legs smoothly.
+    if (t >= 0.0f && t <= spec.resume_time) {
+      const float to_action = smooth5(t / kLegHandover);
+      const float to_walk = smooth5((t - (spec.resume_time - kLegHandover)) / kLegHandover);
+      const DofPose walk_legs = to_walk > 0.0f ? out.pose(t - spec.resume_time) : in.pose(t);
+      const float keyed = to_walk > 0.0f ? 1.0f - to_walk : to_action;
+      for (int side = 0; side < 2; ++side)
+        for (SideDof j : {kHipFlex, kHipAbduct, kHipRotation, kKneeFlex, kAnkleDorsi, kToeExtension})
+          d.at(side, j) = keyed * d.at(side, j) + (1.0f - keyed) * walk_legs.at(side, j);
+    }
     if (flight && t > spec.flight_from && t < spec.flight_to) {
       const float s = t - spec.flight_from;
       const glm::vec3 p = p0 + v0 * s - glm::vec3(0.0f, 0.5f * kGravity * s * s, 0.0f);
@@ -115,10 +131,11 @@ GeneratedClip compose_action(const ActionSpec& spec) {
     }
   }
   GeneratedClip g;
-  g.clip = realize(draft, &g.report);
+  const int pad_frames = static_cast<int>(std::lround(pad * fps));
+  g.clip = crop(realize(draft, &g.report), pad_frames, count - 2 * pad_frames);
   g.role = spec.role;
   g.cyclic = false;
-  g.target_frame = frame_of(spec.target_time);
+  g.target_frame = frame_of(spec.target_time) - pad_frames;
   return g;
 }
 

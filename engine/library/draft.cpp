@@ -1,6 +1,8 @@
 #include "engine/library/draft.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -15,7 +17,8 @@ namespace prep::library {
 namespace {
 
 constexpr float kHalfPi = 1.5707963f;
-constexpr float kWristAboveFloor = 0.03f;  // wrist joint centre above the floor with the palm flat on it
+constexpr float kWristAboveFloor = 0.03f;
+constexpr float kRelease = 0.4f;  // s over which a limb returns to its keyed path after its last support  // wrist joint centre above the floor with the palm flat on it
 
 glm::quat yaw_rotation(float yaw) { return glm::angleAxis(yaw, glm::vec3(0, 1, 0)); }
 glm::quat pitch_rotation(float toe_up) { return glm::angleAxis(-toe_up, glm::vec3(1, 0, 0)); }
@@ -25,7 +28,14 @@ struct LimbFrame {
   glm::quat end_rotation{1, 0, 0, 0};
   bool has_toe = false;
   glm::quat toe_world{1, 0, 0, 0};  // feet: world rotation of the toes
+  // A rolling foot: how it is held, so that the heel can rise (further) if the ankle would otherwise
+  // dorsiflex beyond kMaxLoadedDorsiflexion.
+  bool heel_can_rise = false;
+  glm::vec3 flat_anchor{0.0f};
+  float yaw = 0.0f, roll = 0.0f;
 };
+
+constexpr float kMaxLoadedDorsiflexion = 0.70f;  // rad (40 degrees)
 
 // The heading and the toe-up pitch of a foot's world rotation.
 void yaw_pitch(const glm::quat& q, float& yaw, float& pitch) {
@@ -50,9 +60,14 @@ FootHold roll_foot(glm::vec3 flat_ankle, float yaw, float roll, bool before_mid)
   const glm::quat heading = yaw_rotation(yaw);
   FootHold h;
   if (before_mid) {
-    h.foot = heading * pitch_rotation(std::max(roll, 0.0f));
+    // Heel rocker: the ankle stays above the same floor point and rises just enough that the heel's
+    // underside (a quarter foot length behind the ankle) does not go through the floor.
+    const float toe_up = std::max(roll, 0.0f);
+    h.foot = heading * pitch_rotation(toe_up);
     h.toes = h.foot;
     h.ankle = flat_ankle;
+    const float heel_back = 0.25f * anthropometry::kFootLength, height = anthropometry::kAnkleHeight;
+    h.ankle.y += std::max(0.0f, heel_back * std::sin(toe_up) - height * (1.0f - std::cos(toe_up)));
     return h;
   }
   const float pitch = std::min(roll, 0.0f);
@@ -167,16 +182,24 @@ Clip realize(const Draft& draft, RealizeReport* report) {
           h.end = hold.ankle;
           h.end_rotation = hold.foot;
           h.toe_world = hold.toes;
+          h.heel_can_rise = true;  // whenever the ankle would dorsiflex too far, the heel comes up
+          h.flat_anchor = anchor;
+          h.yaw = yaw;
+          h.roll = f >= mid ? std::min(pitch - mid_pitch, 0.0f) : std::max(pitch - mid_pitch, 0.0f);
         } else {
           h.end = anchor;
           h.end_rotation = rigid_rotation;
+          if (limb.is_leg) h.toe_world = rigid_rotation * glm::inverse(m.end_rotation) * m.toe_world;  // toes as at mid-support
         }
       }
       const LimbFrame &kf = keyed[S(first)], &hf = held[S(first)], &kl = keyed[S(last)], &hl = held[S(last)];
       at_first.push_back({hf.end - kf.end, hf.end_rotation * glm::inverse(kf.end_rotation)});
       at_last.push_back({hl.end - kl.end, hl.end_rotation * glm::inverse(kl.end_rotation)});
     }
-    // Between supports: the keyed path, corrected by a smooth blend of the neighbouring corrections, lifted.
+    // Between supports: leave the last held transform and arrive at the next one with zero velocity
+    // (a minimum-jerk transfer), carrying the keyed path's own shape (its deviation from its straight
+    // transfer: the clearance, the knee's swing) windowed by sin(pi tau) so both ends stay at rest. Before
+    // the first and after the last support the keyed path is shifted by that support's correction.
     const size_t count = supports.size();
     for (int f = 0; f < n; ++f) {
       size_t next = 0;
@@ -184,24 +207,41 @@ Clip realize(const Draft& draft, RealizeReport* report) {
       if (next > 0 && f <= supports[next - 1].last) continue;  // inside a support
       const LimbFrame& k = keyed[S(f)];
       LimbFrame& h = held[S(f)];
-      Correction c;
-      float lift = 0.0f;
-      if (next == 0) {
-        c = at_first[0];
-      } else if (next == count) {
-        c = at_last[count - 1];
-      } else {
-        const int e = supports[next - 1].last, b = supports[next].first;
-        const float tau = static_cast<float>(f - e) / static_cast<float>(b - e);
-        const float w = smooth5(tau);
-        c.shift = glm::mix(at_last[next - 1].shift, at_first[next].shift, w);
-        c.turn = glm::slerp(at_last[next - 1].turn, at_first[next].turn, w);
-        lift = supports[next].lift_before * 16.0f * tau * tau * (1 - tau) * (1 - tau);
-      }
-      h.end = k.end + c.shift + glm::vec3(0, lift, 0);
-      h.end_rotation = glm::normalize(c.turn * k.end_rotation);
       h.has_toe = k.has_toe;
-      h.toe_world = glm::normalize(c.turn * k.toe_world);
+      if (next == 0 || next == count) {
+        // Before the first / after the last support the limb returns to its keyed path within kRelease.
+        const int edge = next == 0 ? std::clamp(supports[0].first, 0, n - 1) : std::clamp(supports[count - 1].last, 0, n - 1);
+        const float away = static_cast<float>(std::abs(f - edge)) / draft.fps;
+        const float keep = 1.0f - smooth5(away / kRelease);
+        const Correction c = next == 0 ? at_first[0] : at_last[count - 1];
+        h.end = k.end + keep * c.shift;
+        const glm::quat turn = glm::slerp(glm::quat(1, 0, 0, 0), c.turn, keep);
+        h.end_rotation = glm::normalize(turn * k.end_rotation);
+        h.toe_world = glm::normalize(turn * k.toe_world);
+      } else {
+        const int e = std::clamp(supports[next - 1].last, 0, n - 1), b = std::clamp(supports[next].first, 0, n - 1);
+        const float tau = static_cast<float>(f - e) / static_cast<float>(b - e);
+        // The transfer along the floor starts after 5% of the swing: a foot leaves the floor vertically
+        // and lands with the minimum-jerk profile (no velocity left at touch-down).
+        const float w = smooth5((tau - 0.05f) / 0.95f);
+        // The vertical shape starts at once, the horizontal one more gently: a foot lifts before it moves on.
+        const float tau_flat = std::clamp((tau - 0.05f) / 0.95f, 0.0f, 1.0f);
+        const float window = std::sin(3.14159265f * tau), window_flat = std::pow(std::sin(3.14159265f * tau_flat), 2.0f);
+        const LimbFrame &he = held[S(e)], &hb = held[S(b)], &ke = keyed[S(e)], &kb = keyed[S(b)];
+        const glm::vec3 keyed_shape = k.end - glm::mix(ke.end, kb.end, w);
+        const float lift = supports[next].lift_before * window;
+        h.end = glm::mix(he.end, hb.end, w) + glm::vec3(window_flat * keyed_shape.x, window * keyed_shape.y, window_flat * keyed_shape.z) +
+                glm::vec3(0, lift, 0);
+        const glm::quat keyed_turn = glm::normalize(k.end_rotation * glm::inverse(glm::slerp(ke.end_rotation, kb.end_rotation, w)));
+        const glm::quat shape_turn = glm::slerp(glm::quat(1, 0, 0, 0), keyed_turn, window_flat);
+        h.end_rotation = glm::normalize(shape_turn * glm::slerp(he.end_rotation, hb.end_rotation, w));
+        if (k.has_toe) {  // the toes relative to the foot, blended likewise
+          const glm::quat toe_e = glm::inverse(he.end_rotation) * he.toe_world, toe_b = glm::inverse(hb.end_rotation) * hb.toe_world;
+          const glm::quat toe_k = glm::inverse(k.end_rotation) * k.toe_world;
+          const glm::quat toe_line = glm::slerp(toe_e, toe_b, w);
+          h.toe_world = glm::normalize(h.end_rotation * glm::slerp(toe_line, toe_k, window_flat));
+        }
+      }
       if (limb.is_leg) {  // never through the floor: raise the foot if its toe tip or heel would go below it
         const glm::vec3 tip = h.end + h.end_rotation * ball_offset + h.toe_world * toe_tip_offset;
         const glm::vec3 heel = h.end + h.end_rotation * glm::vec3(0, -anthropometry::kAnkleHeight, -0.25f * anthropometry::kFootLength);
@@ -209,6 +249,9 @@ Clip realize(const Draft& draft, RealizeReport* report) {
         if (low < 0.0f) h.end.y -= low;
       }
     }
+    std::vector<bool> in_support(S(n), false);
+    for (const Support& s : supports)
+      for (int f = std::max(s.first, 0); f <= std::min(s.last, n - 1); ++f) in_support[S(f)] = true;
     // Solve the limb at every frame.
     TwoBoneChain chain;
     chain.upper_length = glm::length(offset(limb.middle));
@@ -219,17 +262,46 @@ Clip realize(const Draft& draft, RealizeReport* report) {
     for (int f = 0; f < n; ++f) {
       const auto& pos = positions[S(f)];
       const auto& rot = rotations[S(f)];
-      const LimbFrame& h = held[S(f)];
+      LimbFrame h = held[S(f)];
       // Knees bend toward the front of the thigh; elbows toward the back of the upper arm.
       const glm::vec3 hint = rot[S(limb.upper)] * (limb.is_leg ? glm::vec3(0, 0, 1) : glm::vec3(0, 0, -1));
-      const TwoBoneSolution sol = solve_two_bone(chain, pos[S(limb.upper)], h.end, hint);
-      if (!sol.reached && report) ++report->unreachable_frames;
+      TwoBoneSolution sol = solve_two_bone(chain, pos[S(limb.upper)], h.end, hint);
+      for (int pass = 0; pass < 4 && h.heel_can_rise; ++pass) {
+        const glm::quat shin = sol.upper_world * glm::angleAxis(sol.hinge_angle, chain.hinge_axis);
+        const glm::vec3 forward = glm::inverse(shin) * h.end_rotation * glm::vec3(0, 0, 1);
+        const float dorsiflexion = std::asin(std::clamp(forward.y, -1.0f, 1.0f));
+        if (dorsiflexion <= kMaxLoadedDorsiflexion) break;
+        h.roll -= dorsiflexion - kMaxLoadedDorsiflexion;  // raise the heel by the excess, about the ball
+        const FootHold hold = roll_foot(h.flat_anchor, h.yaw, h.roll, false);
+        h.end = hold.ankle;
+        h.end_rotation = hold.foot;
+        h.toe_world = hold.toes;
+        sol = solve_two_bone(chain, pos[S(limb.upper)], h.end, hint);
+      }
+      if (!sol.reached && report) {
+        ++report->unreachable_frames;
+        const float over = glm::length(h.end - pos[S(limb.upper)]) - chain.upper_length - chain.lower_length;
+        report->worst_overreach = std::max(report->worst_overreach, over);
+        if (std::getenv("PREP_DEBUG_IK")) std::fprintf(stderr, "%s f%d %s%d over %.4f\n", draft.name.c_str(), f, limb.is_leg ? "leg" : "arm", limb.side, over);
+      }
       Pose& pose = clip.frames[S(f)];
       const glm::quat middle_local = glm::angleAxis(sol.hinge_angle, chain.hinge_axis);
       const glm::quat middle_world = sol.upper_world * middle_local;
       pose.rotations[S(limb.upper)] = glm::normalize(glm::inverse(rot[S(parent)]) * sol.upper_world);
       pose.rotations[S(limb.middle)] = middle_local;
       pose.rotations[S(limb.end)] = glm::normalize(glm::inverse(middle_world) * h.end_rotation);
+      if (limb.is_leg && !in_support[S(f)]) {
+        // A swinging foot keeps within the ankle's range: plantarflex it (about the ankle) if the blend of
+        // the keyed and held orientations would dorsiflex it too far.
+        const glm::vec3 forward = pose.rotations[S(limb.end)] * glm::vec3(0, 0, 1);
+        const float dorsiflexion = std::asin(std::clamp(forward.y, -1.0f, 1.0f));
+        if (dorsiflexion > kMaxLoadedDorsiflexion) {
+          const glm::quat fix = glm::angleAxis(dorsiflexion - kMaxLoadedDorsiflexion, glm::vec3(1, 0, 0));
+          pose.rotations[S(limb.end)] = glm::normalize(pose.rotations[S(limb.end)] * fix);
+          h.end_rotation = glm::normalize(h.end_rotation * fix);
+          h.toe_world = glm::normalize(h.toe_world * fix);
+        }
+      }
       if (limb.end_child >= 0) pose.rotations[S(limb.end_child)] = glm::normalize(glm::inverse(h.end_rotation) * h.toe_world);
     }
   }

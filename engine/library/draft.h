@@ -56,6 +56,7 @@ FootHold roll_foot(glm::vec3 flat_ankle, float yaw, float roll, bool before_mid)
 
 struct RealizeReport {
   int unreachable_frames = 0;  // limb IK targets out of reach (should be 0)
+  float worst_overreach = 0.0f;  // m beyond the limb's length at worst
 };
 
 // Merges overlapping or touching supports of each limb (keeping the first's anchor and lift).

@@ -44,7 +44,10 @@ constexpr float kSpeedModulation = 0.08f;
 // Our sagittal-only leg chain carries the toe too low through swing (real limbs add hip hiking and
 // circumduction); this much is added to the swing foot's height at mid-swing so the toe clears the floor
 // by the 1-2 cm of normal gait at its lowest and rises ~10 cm early in swing.
-constexpr float kSwingLift = 0.05f;
+constexpr float kSwingLift = 0.06f;
+// The pelvis stays this much below the height the stance legs allow, so that the sway, the pelvic
+// rotation and the turns (which the height plan ignores) never straighten a stance knee completely.
+constexpr float kKneeMargin = 0.025f;
 
 float wrap01(float x) { return x - std::floor(x); }
 
@@ -130,7 +133,7 @@ GaitStyle plan_gait(float speed, float amplitude, float fps) {
   for (size_t i = 0; i <= off; ++i)
     held[i] = roll_foot(glm::vec3(0, anthropometry::kAnkleHeight, 0), 0.0f, pitch[i] - pitch[mid], i < mid).ankle;
   // Stride: over a stance the root travels as far as the ankle moves back relative to it, less how far
-  // the rolling foot carries the ankle forward (stance is 62% of the stride).
+  // the rolling foot carries the ankle forward (stance is kStanceFraction of the stride).
   const float stance_travel = (ankle[0].z - held[0].z) - (ankle[off].z - held[off].z);
   const float per_phase = stance_travel / kStanceFraction;
   style.stride_m = per_phase;
@@ -193,7 +196,7 @@ GaitStyle plan_gait(float speed, float amplitude, float fps) {
   float worst = 0.0f;
   for (int i = 0; i < kSamples; ++i)
     worst = std::max(worst, periodic_catmull_rom(style.pelvis_height, static_cast<float>(i) / kSamples) - need[static_cast<size_t>(i)]);
-  for (float& y : style.pelvis_height) y -= worst + 0.004f;
+  for (float& y : style.pelvis_height) y -= worst + kKneeMargin;
   return style;
 }
 
@@ -232,8 +235,12 @@ DofPose Walker::pose(float t) const {
   d[kRootX] = root.x;
   d[kRootZ] = root.y;
   d[kYaw] += h;
-  // Turning: the head leads the turn by ~0.3 s and the body leans into it a little.
+  // Turning: the head leads the turn by ~0.3 s and the body leans into it a little, its centre of mass
+  // shifted toward the inside of the curve (the centripetal lean, ~v * rate * h / g).
   const float rate = (heading(t + 0.01f) - heading(t - 0.01f)) / 0.02f;
+  const glm::vec2 inward = lateral * (style_.speed * rate * 0.9f / 9.81f) * 0.5f;
+  d[kRootX] += inward.x;
+  d[kRootZ] += inward.y;
   d[kNeckTwist] += 0.15f * rate;
   d[kHeadTwist] += 0.15f * rate;
   d[kPelvisRoll] -= 0.03f * rate;
@@ -272,7 +279,7 @@ std::vector<Support> Walker::supports(int side, float t_begin, float t_end, floa
     s.explicit_anchor = true;
     s.anchor_xz = centre + forward * glm::dot(ankle - centre, forward) + lateral * (side_sign(side) * style_.step_half_width);
     s.anchor_yaw = h + side_sign(side) * style_.toe_out;
-    s.lift_before = kSwingLift * style_.amplitude;
+    s.lift_before = kSwingLift;
     out.push_back(s);
   }
   return out;

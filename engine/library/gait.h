@@ -5,8 +5,8 @@
 // Pathological", 2nd ed., 1991; J. Perry, "Gait Analysis: Normal and Pathological Function", 1992): our
 // own table of the curves' values every 5% of the cycle, read by periodic Catmull-Rom. Around them: pelvic
 // rotation, obliquity and tilt, the lateral sway and vertical bob of the pelvis, thorax counter-rotation and
-// arm swing opposite the legs (Perry ch. 9 and 10). Stance lasts 62% of the cycle (toe-off at 62%), so each
-// double support lasts 12%. The feet are then planted by realize(): anchors on the floor, IK for the legs.
+// arm swing opposite the legs (Perry ch. 9 and 10). Stance lasts 60% of the cycle (Perry: toe-off at 60%), so each
+// double support lasts 10%. The feet are then planted by realize(): anchors on the floor, IK for the legs.
 #pragma once
 
 #include <functional>
@@ -19,7 +19,7 @@
 
 namespace prep::library {
 
-constexpr float kStanceFraction = 0.62f;  // heel strike at phase 0, toe-off at 0.62 (right leg; left +0.5)
+constexpr float kStanceFraction = 0.60f;  // heel strike at phase 0, toe-off at 0.60 (right leg; left +0.5)
 
 struct GaitStyle {
   float amplitude = 1.0f;        // sagittal excursions relative to natural cadence (slower walks swing less)

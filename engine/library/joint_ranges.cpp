@@ -17,9 +17,9 @@ float rotation_angle_deg(const glm::quat& q) {
 const std::vector<JointRange>& joint_ranges() {
   static const std::vector<JointRange> ranges = {
       {"UpLeg", "hip flexion", -30, 125},      {"UpLeg", "hip abduction", -30, 45},
-      {"Leg", "knee flexion", -5, 150},        {"Foot", "ankle dorsiflexion", -50, 30},
+      {"Leg", "knee flexion", -5, 150},        {"Foot", "ankle dorsiflexion", -50, 45},
       {"ToeBase", "toe extension", -40, 70},   {"ForeArm", "elbow flexion", 0, 150},
-      {"Hand", "wrist rotation", 0, 70},       {"Shoulder", "clavicle rotation", 0, 30},
+      {"Hand", "wrist rotation", 0, 95},       {"Shoulder", "clavicle rotation", 0, 30},
       {"Spine", "lumbar rotation", 0, 40},     {"Spine1", "thoracic rotation", 0, 40},
       {"Spine2", "thoracic rotation", 0, 40},  {"Neck", "neck rotation", 0, 60},
       {"Head", "head rotation", 0, 45},

@@ -3,6 +3,11 @@
 #include "engine/library/action.h"
 #include "engine/library/rig.h"
 
+#include <array>
+#include <cmath>
+
+#include "engine/motion/kinematics.h"
+
 namespace prep::library {
 namespace {
 constexpr float kDeg = 3.14159265f / 180.0f;
@@ -37,7 +42,8 @@ GeneratedClip make_jump(const std::string& name, Obstacle* hurdle) {
   spec.walk_in_s = T;
   spec.resume_time = resume;
   spec.resume_phase = 0.0f;
-  spec.resume_origin = {0.0f, land_z + step - (in.supports(1, 0.0f, 0.0f, 0.0f).back().anchor_xz.y - 0.0f)};
+  // The first step out of the landing is a little shorter than a walking step.
+  spec.resume_origin = {0.0f, land_z + step - 0.06f - in.supports(1, 0.0f, 0.0f, 0.0f).back().anchor_xz.y};
   spec.walk_out_s = T;
   spec.target_time = 0.5f;  // the counter-movement crouch begins once both feet are down
 
@@ -47,13 +53,13 @@ GeneratedClip make_jump(const std::string& name, Obstacle* hurdle) {
     spec.keys.push_back({t, d, false, {}});
   };
   // Gather: the left foot comes alongside, the body slows over the feet.
-  key(0.5f, feet_z - 0.05f, 0.86f, [](DofPose& d) {
+  key(0.5f, feet_z + 0.02f, 0.86f, [](DofPose& d) {
     set_legs(d, 25, 35, 5);
     set_arms(d, -10, 25);
     d[kSpineFlex] = 8 * kDeg;
   });
   // Counter-movement: hips back and down, trunk forward, arms swung back.
-  key(0.8f, feet_z - 0.12f, 0.66f, [](DofPose& d) {
+  key(0.8f, feet_z - 0.04f, 0.66f, [](DofPose& d) {
     set_legs(d, 80, 105, 25);
     set_arms(d, -45, 20, 12);
     d[kSpineFlex] = 28 * kDeg;
@@ -80,14 +86,14 @@ GeneratedClip make_jump(const std::string& name, Obstacle* hurdle) {
     d[kSpineFlex] = 15 * kDeg;
   });
   // Absorb.
-  key(1.7f, land_z - 0.08f, 0.72f, [](DofPose& d) {
+  key(1.7f, land_z - 0.08f, 0.77f, [](DofPose& d) {
     set_legs(d, 70, 90, 22);
     set_arms(d, 30, 30, 12);
     d[kSpineFlex] = 25 * kDeg;
     d[kNeckFlex] = -15 * kDeg;
   });
   // Rise and lean into the first step.
-  key(2.05f, land_z + 0.05f, 0.90f, [](DofPose& d) {
+  key(2.05f, land_z + 0.05f, 0.88f, [](DofPose& d) {
     set_legs(d, 10, 12, 0);
     set_arms(d, 5, 20);
     d[kSpineFlex] = 4 * kDeg;
@@ -100,15 +106,41 @@ GeneratedClip make_jump(const std::string& name, Obstacle* hurdle) {
                   {landing, 2.05f, Hold::RollingFoot, true, {-0.10f, land_z}, -0.05f, 0.0f}};
   // Left: beside the right for the take-off, then landing and holding until the walk's toe-off.
   spec.feet[0] = {{0.50f, takeoff, Hold::RollingFoot, true, {0.12f, feet_z}, 0.08f, 0.06f},
-                  {landing, resume + 0.12f * T, Hold::RollingFoot, true, {0.10f, land_z}, 0.05f, 0.0f}};
+                  {landing, resume + (kStanceFraction - 0.5f) * T, Hold::RollingFoot, true, {0.10f, land_z}, 0.05f, 0.0f}};
+  GeneratedClip g = compose_action(spec);
   if (hurdle) {
-    // The hurdle stands midway between the take-off toes and the landing heels.
+    // The hurdle (10 cm deep) goes where the feet pass highest: for each candidate position between the
+    // take-off toes and the landing heels, the lowest foot point that passes over it; the best one wins.
     const float toes = feet_z + anthropometry::kAnkleToBall + anthropometry::kBallToToeTip;
     const float heels = land_z - 0.25f * anthropometry::kFootLength;
-    const float centre = 0.5f * (toes + heels);
-    *hurdle = {centre - 0.05f, centre + 0.05f, 0.40f, 0.45f, true};
+    std::vector<std::array<glm::vec3, 6>> feet_points;
+    std::vector<glm::vec3> pos;
+    std::vector<glm::quat> rot;
+    for (const Pose& p : g.clip.frames) {
+      forward_kinematics(*g.clip.skeleton, p, pos, &rot);
+      std::array<glm::vec3, 6> pts;
+      for (int side = 0; side < 2; ++side) {
+        const size_t a = static_cast<size_t>(foot(side));
+        pts[static_cast<size_t>(3 * side)] = pos[a];
+        pts[static_cast<size_t>(3 * side + 1)] = end_site_position(*g.clip.skeleton, toe(side), pos, rot);
+        pts[static_cast<size_t>(3 * side + 2)] = pos[a] + rot[a] * glm::vec3(0, -anthropometry::kAnkleHeight, -0.25f * anthropometry::kFootLength);
+      }
+      feet_points.push_back(pts);
+    }
+    float best_z = 0.5f * (toes + heels), best_low = -1.0f;
+    for (float z = toes + 0.05f; z <= heels - 0.05f; z += 0.01f) {
+      float low = 1e9f;
+      for (const auto& pts : feet_points)
+        for (const glm::vec3& p : pts)
+          if (std::fabs(p.z - z) <= 0.05f) low = std::min(low, p.y);
+      if (low > best_low) {
+        best_low = low;
+        best_z = z;
+      }
+    }
+    *hurdle = {best_z - 0.05f, best_z + 0.05f, 0.40f, 0.45f, true};
   }
-  return compose_action(spec);
+  return g;
 }
 
 }  // namespace prep::library

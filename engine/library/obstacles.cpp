@@ -12,18 +12,32 @@ namespace prep::library {
 namespace {
 constexpr float kDeg = 3.14159265f / 180.0f;
 
-// Highest body point (joints and end sites) with z in [z0, z1] over a clip.
-float highest_between(const Clip& clip, float z0, float z1) {
+// The body's extent along z (joints and end sites) at one frame.
+void z_extent(const Clip& clip, int frame, float& z_min, float& z_max) {
   std::vector<glm::vec3> pos;
   std::vector<glm::quat> rot;
-  float top = 0.0f;
-  for (const Pose& p : clip.frames) {
-    forward_kinematics(*clip.skeleton, p, pos, &rot);
-    for (int j = 0; j < clip.skeleton->size(); ++j) {
-      if (pos[static_cast<size_t>(j)].z >= z0 && pos[static_cast<size_t>(j)].z <= z1) top = std::max(top, pos[static_cast<size_t>(j)].y);
+  forward_kinematics(*clip.skeleton, clip.frames[static_cast<size_t>(frame)], pos, &rot);
+  z_min = 1e9f;
+  z_max = -1e9f;
+  for (int j = 0; j < clip.skeleton->size(); ++j) {
+    std::vector<glm::vec3> points = {pos[static_cast<size_t>(j)]};
+    if (clip.skeleton->joints[static_cast<size_t>(j)].has_end_site) points.push_back(end_site_position(*clip.skeleton, j, pos, rot));
+    for (const glm::vec3& p : points) {
+      z_min = std::min(z_min, p.z);
+      z_max = std::max(z_max, p.z);
     }
   }
-  return top;
+}
+
+// An obstacle across the path midway between where the body's front is when it has got low and where its
+// back is when it starts to rise again, so that the whole body passes under it while low.
+Obstacle under_obstacle(const Clip& clip, int low_from, int low_to, float height, float clearance) {
+  float front_min, front_max, back_min, back_max;
+  z_extent(clip, low_from, front_min, front_max);
+  z_extent(clip, low_to, back_min, back_max);
+  const float centre = 0.5f * (front_max + back_min);
+  const float half_depth = std::min(0.1f, 0.5f * (back_min - front_max));
+  return {centre - half_depth, centre + half_depth, height, clearance, false};
 }
 }  // namespace
 
@@ -34,7 +48,8 @@ GeneratedClip make_duck(const std::string& name, Obstacle* beam) {
   const Walker walker(style, 0.0f, {0.0f, 0.0f}, 0.0f);
   const float T = style.cycle_s;
   const float down_from = 0.3f * T, down_to = 1.2f * T, up_from = 2.7f * T, up_to = 3.6f * T;
-  const float t0 = -T, t1 = 4.6f * T;
+  const float pad = T;  // a cycle of padding at both ends, cropped (supports over the clip's ends roll as in the walk)
+  const float t0 = -T - pad, t1 = 4.6f * T + pad;
   const auto depth = [&](float t) { return smooth5((t - down_from) / (down_to - down_from)) - smooth5((t - up_from) / (up_to - up_from)); };
   Draft draft;
   draft.name = name;
@@ -44,15 +59,15 @@ GeneratedClip make_duck(const std::string& name, Obstacle* beam) {
     const float t = t0 + static_cast<float>(f) / style.fps;
     DofPose d = walker.pose(t);
     const float k = depth(t);
-    d[kRootY] -= 0.24f * k;
-    d[kSpineFlex] += 52 * kDeg * k;
-    d[kPelvisTilt] += 12 * kDeg * k;
-    d[kNeckFlex] -= 35 * kDeg * k;
-    d[kHeadFlex] -= 15 * kDeg * k;
+    d[kRootY] -= 0.12f * k;
+    d[kSpineFlex] += 55 * kDeg * k;
+    d[kPelvisTilt] += 32 * kDeg * k;
+    d[kNeckFlex] -= 22 * kDeg * k;
+    d[kHeadFlex] -= 8 * kDeg * k;
     for (int side = 0; side < 2; ++side) {
       d.at(side, kHipFlex) += 35 * kDeg * k;
-      d.at(side, kKneeFlex) += 55 * kDeg * k;
-      d.at(side, kAnkleDorsi) += 15 * kDeg * k;
+      d.at(side, kKneeFlex) += 40 * kDeg * k;
+      d.at(side, kAnkleDorsi) += 10 * kDeg * k;
       d.at(side, kShoulderFlex) += 15 * kDeg * k;
       d.at(side, kElbowFlex) += 20 * kDeg * k;
     }
@@ -60,17 +75,14 @@ GeneratedClip make_duck(const std::string& name, Obstacle* beam) {
   }
   for (int side = 0; side < 2; ++side) draft.feet[static_cast<size_t>(side)] = walker.supports(side, t0, t1, t0);
   GeneratedClip g;
-  g.clip = realize(draft, &g.report);
+  const int pad_frames = static_cast<int>(std::lround(pad * style.fps));
+  g.clip = crop(realize(draft, &g.report), pad_frames, count - 2 * pad_frames);
   g.role = Role::Duck;
-  g.target_frame = static_cast<int>(std::lround((down_from - t0) * style.fps));
-  if (beam) {
-    // The beam is where the head is in the middle of the crouched passage, 0.2 m deep.
-    std::vector<glm::vec3> pos;
-    const int mid = static_cast<int>(std::lround((0.5f * (down_to + up_from) - t0) * style.fps));
-    forward_kinematics(*g.clip.skeleton, g.clip.frames[static_cast<size_t>(mid)], pos);
-    const float z = pos[kHead].z;
-    *beam = {z - 0.1f, z + 0.1f, 1.2f, 1.15f, false};
-  }
+  const float clip_t0 = t0 + pad;
+  g.target_frame = static_cast<int>(std::lround((down_from - clip_t0) * style.fps));
+  if (beam)
+    *beam = under_obstacle(g.clip, static_cast<int>(std::lround((down_to - clip_t0) * style.fps)),
+                           static_cast<int>(std::lround((up_from - clip_t0) * style.fps)), 1.2f, 1.15f);
   return g;
 }
 
@@ -85,12 +97,12 @@ GeneratedClip make_crawl(const std::string& name, Obstacle* bar) {
   const float feet_z = in.supports(1, 0.0f, 0.0f, 0.0f).back().anchor_xz.y;
   // Timeline (s from the join): gather the feet, kneel and put the hands down, crawl, squat back onto
   // the feet, stand, walk on.
-  const float kneel_from = 0.5f, hands_down = 1.3f, knees_down = 1.5f;
-  constexpr int kCycles = 4;
-  constexpr float kCrawlCycle = 1.1f;   // s per crawl cycle (each limb steps once)
-  constexpr float kCrawlStep = 0.30f;   // m per limb step
+  const float kneel_from = 0.5f, feet_off = 1.1f, hands_down = 1.5f, knees_down = 1.5f;
+  constexpr int kCycles = 5;
+  constexpr float kCrawlCycle = 1.0f;   // s per crawl cycle (each limb steps once)
+  constexpr float kCrawlStep = 0.35f;   // m per limb step
   const float crawl_from = 1.7f, crawl_to = crawl_from + kCycles * kCrawlCycle;
-  const float feet_up = crawl_to + 0.1f, feet_land = crawl_to + 0.6f, hands_up = crawl_to + 0.8f, stand = crawl_to + 1.6f;
+  const float feet_up = crawl_to + 0.1f, hands_up = crawl_to + 0.3f, feet_land = crawl_to + 0.6f, stand = crawl_to + 1.6f;
   const float resume = stand + 0.5f;
   spec.walk_in_s = T;
   spec.target_time = kneel_from;
@@ -100,21 +112,21 @@ GeneratedClip make_crawl(const std::string& name, Obstacle* bar) {
 
   // The crawling posture: trunk nearly horizontal, thighs vertical, shins on the floor, arms under the
   // shoulders with elbows slightly bent, neck extended to look ahead.
-  const float root_crawl_y = 0.45f;
+  const float root_crawl_y = 0.48f;
   auto crawl_pose = [&](float z) {
     DofPose d = standing_pose({0.0f, z}, root_crawl_y);
     d[kPelvisTilt] = 72 * kDeg;
-    d[kSpineFlex] = 14 * kDeg;
-    d[kNeckFlex] = -40 * kDeg;
-    d[kHeadFlex] = -25 * kDeg;
+    d[kSpineFlex] = 19 * kDeg;
+    d[kNeckFlex] = 8 * kDeg;
+    d[kHeadFlex] = -4 * kDeg;
     for (int side = 0; side < 2; ++side) {
       d.at(side, kHipFlex) = 75 * kDeg;
       d.at(side, kKneeFlex) = 100 * kDeg;
-      d.at(side, kAnkleDorsi) = -40 * kDeg;
-      d.at(side, kShoulderFlex) = 80 * kDeg;
+      d.at(side, kAnkleDorsi) = -35 * kDeg;
+      d.at(side, kShoulderFlex) = 92 * kDeg;  // arms vertical at mid-support, sweeping +-15 degrees
       d.at(side, kShoulderAbduct) = 8 * kDeg;
       d.at(side, kShoulderTwist) = 0.0f;
-      d.at(side, kElbowFlex) = 25 * kDeg;
+      d.at(side, kElbowFlex) = 10 * kDeg;
       d.at(side, kWristFlex) = -10 * kDeg;
     }
     return d;
@@ -130,7 +142,7 @@ GeneratedClip make_crawl(const std::string& name, Obstacle* bar) {
     key(kneel_from, d);
   }
   {  // Bend down, reaching for the floor.
-    DofPose d = standing_pose({0.0f, feet_z + 0.05f}, 0.62f);
+    DofPose d = standing_pose({0.0f, feet_z + 0.02f}, 0.60f);
     d[kPelvisTilt] = 45 * kDeg;
     d[kSpineFlex] = 20 * kDeg;
     d[kNeckFlex] = -25 * kDeg;
@@ -141,7 +153,7 @@ GeneratedClip make_crawl(const std::string& name, Obstacle* bar) {
       d.at(side, kShoulderFlex) = 70 * kDeg;
       d.at(side, kElbowFlex) = 20 * kDeg;
     }
-    key(hands_down - 0.1f, d);
+    key(feet_off, d);
   }
   key(knees_down, crawl_pose(root_start - 0.05f));
   // Crawl: the trunk rolls and twists a little with the diagonal limb pairs.
@@ -153,14 +165,14 @@ GeneratedClip make_crawl(const std::string& name, Obstacle* bar) {
     d[kSpineTwist] = -4 * kDeg * s;
     key(t, d);
   }
-  {  // Push back onto the feet: a deep squat with the hands still down.
-    DofPose d = standing_pose({0.0f, root_end - 0.1f}, 0.55f);
+  {  // Push back onto the feet: a half squat, the trunk still bent forward.
+    DofPose d = standing_pose({0.0f, root_end - 0.10f}, 0.80f);
     d[kPelvisTilt] = 40 * kDeg;
-    d[kSpineFlex] = 35 * kDeg;
+    d[kSpineFlex] = 25 * kDeg;
     d[kNeckFlex] = -30 * kDeg;
     for (int side = 0; side < 2; ++side) {
-      d.at(side, kHipFlex) = 100 * kDeg;
-      d.at(side, kKneeFlex) = 125 * kDeg;
+      d.at(side, kHipFlex) = 85 * kDeg;
+      d.at(side, kKneeFlex) = 85 * kDeg;
       d.at(side, kAnkleDorsi) = 25 * kDeg;
       d.at(side, kShoulderFlex) = 75 * kDeg;
       d.at(side, kElbowFlex) = 15 * kDeg;
@@ -180,21 +192,21 @@ GeneratedClip make_crawl(const std::string& name, Obstacle* bar) {
   for (int side = 0; side < 2; ++side) {
     const float x = side_sign(side) * 0.11f;
     auto& feet = spec.feet[static_cast<size_t>(side)];
-    if (side == 1) feet.push_back({0.0f, hands_down, Hold::RollingFoot, false, {}, 0.0f, 0.0f});
-    else feet.push_back({0.45f, hands_down, Hold::RollingFoot, true, {x, feet_z}, 0.05f, 0.06f});
+    if (side == 1) feet.push_back({0.0f, feet_off, Hold::RollingFoot, false, {}, 0.0f, 0.0f});
+    else feet.push_back({0.45f, feet_off, Hold::RollingFoot, true, {x, feet_z}, 0.05f, 0.06f});
     // On all fours the ankle is a shin's length behind the knee, the knee under the hip.
     const float knee_lead = side == 0 ? 0.0f : 0.5f;  // the left knee steps with the right hand
     float z = root_start - shin + 0.02f;
     float on = knees_down;
     for (int c = 0; c < kCycles; ++c) {
       const float swing_start = crawl_from + (static_cast<float>(c) + knee_lead) * kCrawlCycle;
-      feet.push_back({on, swing_start, Hold::RigidFoot, true, {x, z}, 0.0f, 0.04f});
+      feet.push_back({on, swing_start, Hold::RigidFoot, false, {x, z}, 0.0f, c == 0 ? 0.16f : 0.04f});
       on = swing_start + 0.4f * kCrawlCycle;
       z += kCrawlStep;
     }
-    feet.push_back({on, feet_up, Hold::RigidFoot, true, {x, z}, 0.0f, 0.04f});
-    if (side == 1) feet.push_back({feet_land, resume - 0.35f, Hold::RollingFoot, true, {x, foot_end_z}, 0.0f, 0.08f});
-    else feet.push_back({feet_land, resume + 0.12f * T, Hold::RollingFoot, true, {x, foot_end_z}, 0.0f, 0.08f});
+    feet.push_back({on, feet_up, Hold::RigidFoot, false, {x, z}, 0.0f, 0.04f});
+    if (side == 1) feet.push_back({feet_land, resume - 0.35f, Hold::RollingFoot, true, {x, foot_end_z}, 0.0f, 0.12f});
+    else feet.push_back({feet_land, resume + (kStanceFraction - 0.5f) * T, Hold::RollingFoot, true, {x, foot_end_z}, 0.0f, 0.12f});
     // Hands: under the shoulders.
     auto& hands = spec.hands[static_cast<size_t>(side)];
     const float hand_lead = side == 1 ? 0.0f : 0.5f;  // the right hand steps first
@@ -202,18 +214,17 @@ GeneratedClip make_crawl(const std::string& name, Obstacle* bar) {
     float hon = hands_down;
     for (int c = 0; c < kCycles; ++c) {
       const float swing_start = crawl_from + (static_cast<float>(c) + hand_lead) * kCrawlCycle;
-      hands.push_back({hon, swing_start, Hold::PalmDown, true, {side_sign(side) * 0.17f, hz}, 0.0f, 0.05f});
+      hands.push_back({hon, swing_start, Hold::PalmDown, false, {side_sign(side) * 0.17f, hz}, 0.0f, 0.05f});
       hon = swing_start + 0.4f * kCrawlCycle;
       hz += kCrawlStep;
     }
-    hands.push_back({hon, hands_up, Hold::PalmDown, true, {side_sign(side) * 0.17f, hz}, 0.0f, 0.05f});
+    hands.push_back({hon, hands_up, Hold::PalmDown, false, {side_sign(side) * 0.17f, hz}, 0.0f, 0.05f});
   }
   GeneratedClip g = compose_action(spec);
   if (bar) {
-    // The bar is where the shoulders are halfway through the crawl; the whole body passes under it.
-    const float z = root_start + 0.45f + crawl_speed * 0.5f * (crawl_to - crawl_from);
-    *bar = {z - 0.05f, z + 0.05f, 0.65f, 0.6f, false};
-    (void)highest_between;
+    const float fps = spec.gait.fps;
+    const auto frame = [&](float t) { return static_cast<int>(std::lround((t + spec.walk_in_s) * fps)); };
+    *bar = under_obstacle(g.clip, frame(crawl_from), frame(crawl_to), 0.65f, 0.6f);
   }
   return g;
 }

@@ -15,8 +15,8 @@ void guard(DofPose& d) {
     d.at(side, kShoulderTwist) = 35 * kDeg;
     d.at(side, kElbowFlex) = 118 * kDeg;
     d.at(side, kWristFlex) = 0.0f;
-    d.at(side, kHipFlex) = 14 * kDeg;
-    d.at(side, kKneeFlex) = 18 * kDeg;
+    d.at(side, kHipFlex) = 10 * kDeg;
+    d.at(side, kKneeFlex) = 12 * kDeg;
     d.at(side, kAnkleDorsi) = 6 * kDeg;
   }
   d[kYaw] = -12 * kDeg;
@@ -54,12 +54,12 @@ GeneratedClip make_punch(const std::string& name, bool left) {
     spec.keys.push_back({t, d, false, {}});
   };
   // Raising the guard while stepping into the stance.
-  key(0.5f, stance_z + 0.05f, 0.90f, [](DofPose& d) { d.at(0, kHipFlex) = 22 * kDeg; });
-  key(0.8f, stance_z, 0.90f, [](DofPose&) {});
-  key(strike, stance_z, 0.90f, [](DofPose&) {});
+  key(0.5f, stance_z + 0.05f, 0.92f, [](DofPose& d) { d.at(0, kHipFlex) = 22 * kDeg; });
+  key(0.8f, stance_z, 0.92f, [](DofPose&) {});
+  key(strike, stance_z, 0.92f, [](DofPose&) {});
   const int s = left ? 0 : 1;
   // The strike: shoulder forward to horizontal, elbow straight; the body turns into it.
-  key(strike + 0.14f, stance_z + (left ? 0.04f : 0.06f), 0.89f, [&](DofPose& d) {
+  key(strike + 0.14f, stance_z + (left ? 0.04f : 0.06f), 0.91f, [&](DofPose& d) {
     d.at(s, kShoulderFlex) = 85 * kDeg;
     d.at(s, kShoulderAbduct) = 8 * kDeg;
     d.at(s, kShoulderTwist) = 10 * kDeg;
@@ -68,10 +68,10 @@ GeneratedClip make_punch(const std::string& name, bool left) {
     d[kSpineTwist] = (left ? -10 : 22) * kDeg;
     d[kNeckTwist] = d[kHeadTwist] = -0.5f * (d[kYaw] + d[kSpineTwist]);
   });
-  key(strike + 0.36f, stance_z, 0.90f, [](DofPose&) {});
-  key(1.9f, stance_z + 0.02f, 0.90f, [](DofPose&) {});
+  key(strike + 0.36f, stance_z, 0.92f, [](DofPose&) {});
+  key(1.9f, stance_z + 0.02f, 0.92f, [](DofPose&) {});
   spec.feet[1] = {{0.0f, 2.0f, Hold::RollingFoot, false, {}, 0.0f, 0.0f}};
-  spec.feet[0] = {{0.55f, resume + 0.12f * T, Hold::RollingFoot, true, {0.12f, left_z}, 0.0f, 0.06f}};
+  spec.feet[0] = {{0.55f, resume + (kStanceFraction - 0.5f) * T, Hold::RollingFoot, true, {0.12f, left_z}, 0.0f, 0.06f}};
   return compose_action(spec);
 }
 
@@ -151,8 +151,8 @@ GeneratedClip make_kick(const std::string& name) {
   });
   // Right: walk-in stance, then down after the kick until the walk's right toe-off.
   spec.feet[1] = {{0.0f, 0.55f, Hold::RollingFoot, false, {}, 0.0f, 0.0f},
-                  {1.40f, resume + 0.12f * T, Hold::RollingFoot, true, {-0.10f, land_z}, -0.05f, 0.10f}};
-  spec.feet[0] = {{0.50f, resume - 0.5f * T + 0.12f * T, Hold::RollingFoot, true, {0.16f, plant_z}, 0.08f, 0.06f}};
+                  {1.40f, resume + (kStanceFraction - 0.5f) * T, Hold::RollingFoot, true, {-0.10f, land_z}, -0.05f, 0.10f}};
+  spec.feet[0] = {{0.50f, resume - 0.5f * T + (kStanceFraction - 0.5f) * T, Hold::RollingFoot, true, {0.16f, plant_z}, 0.08f, 0.06f}};
   return compose_action(spec);
 }
 
