@@ -37,6 +37,24 @@ ActionEffect half_cycle(const Clip& clip, int first, int last, float w_root) {
   return e;
 }
 
+// Footsteps in the loop: two per gait cycle, and a gait cycle per touchdown (a foot entering contact) of
+// the foot that touches down most often in the loop's frames (so one touchdown missed by the contact
+// detector on the other foot does not matter). Clips without contacts, or standing ones, count as one
+// gait cycle.
+int footsteps_in_loop(const MotionClip& clip) {
+  if (static_cast<int>(clip.contacts.size()) != clip.clip.frame_count()) return 2;
+  int cycles = 1;
+  for (int f = 0; f < 2; ++f) {
+    int touchdowns = 0;
+    for (int k = clip.loop_first + 1; k <= clip.loop_last; ++k)
+      if (clip.contacts[static_cast<size_t>(k)][static_cast<size_t>(f)].any() &&
+          !clip.contacts[static_cast<size_t>(k - 1)][static_cast<size_t>(f)].any())
+        ++touchdowns;
+    cycles = touchdowns > cycles ? touchdowns : cycles;
+  }
+  return 2 * cycles;
+}
+
 }  // namespace
 
 float RootCurve::weight(float alpha) const { return linear ? alpha : blend_weight(alpha, C, c); }  // Eq. 1
@@ -57,14 +75,17 @@ ActionEffect footstep_effect(const MotionClip& clip, float w_root, const std::st
     throw InputError(source_name, "core motion '" + clip.clip.name +
                                       "' needs a loop range of at least 2 frames to give an action's effect");
   if (clip.clip.skeleton == nullptr) throw InputError(source_name, "core motion '" + clip.clip.name + "' has no skeleton");
-  const int mid = (clip.loop_first + clip.loop_last) / 2;
-  const ActionEffect a = half_cycle(clip.clip, clip.loop_first, mid, w_root);
-  const ActionEffect b = half_cycle(clip.clip, mid, clip.loop_last, w_root);
+  const int steps = footsteps_in_loop(clip);
+  const int span = clip.loop_last - clip.loop_first;
   ActionEffect e;
-  e.forward = 0.5f * (a.forward + b.forward);
-  e.left = 0.5f * (a.left + b.left);
-  e.turn = 0.5f * (a.turn + b.turn);
-  e.duration = 0.5f * (a.duration + b.duration);
+  for (int k = 0; k < steps; ++k) {
+    const ActionEffect part = half_cycle(clip.clip, clip.loop_first + span * k / steps,
+                                         clip.loop_first + span * (k + 1) / steps, w_root);
+    e.forward += part.forward / static_cast<float>(steps);
+    e.left += part.left / static_cast<float>(steps);
+    e.turn += part.turn / static_cast<float>(steps);
+    e.duration += part.duration / static_cast<float>(steps);
+  }
   e.cos_turn = std::cos(e.turn);
   e.sin_turn = std::sin(e.turn);
   return e;

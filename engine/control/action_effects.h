@@ -6,9 +6,10 @@
 // as the root's Eq. 1 weight w_r rises with alpha; the heading follows the locomotion (blend_root_rotation
 // keeps it), so a turning motion still turns when prepared. Nothing here is typed in by hand.
 //
-// One action is one footstep: half of the clip's loop cycle (a gait cycle holds two footsteps, and the
-// motion graph can switch motion at each). The two halves of the cycle (left and right step) differ
-// slightly; the effect is their mean, each half measured in the frame the character had at its start.
+// One action is one footstep (the motion graph can switch motion at each): the clip's loop is cut into as
+// many equal parts as it has footsteps (touchdowns in its contacts, at least two: one gait cycle), each
+// part measured in the frame the character had at its start, and the effect is their mean (left and right
+// steps differ slightly).
 #pragma once
 
 #include <string>
@@ -52,7 +53,7 @@ struct ActionTable {
 // The root curve of a motion set's skeleton under BlendParams (C_lower, overrides, method).
 RootCurve root_curve(const MotionSet& set, const BlendParams& blend);
 
-// One footstep of a cyclic clip played with root weight w_r (the mean of the two halves of its loop).
+// One footstep of a cyclic clip played with root weight w_r (the mean over the footsteps of its loop).
 ActionEffect footstep_effect(const MotionClip& clip, float w_root, const std::string& source_name);
 
 // The table for the given core clips, levels alpha = l * alpha_step for l < alpha_levels.

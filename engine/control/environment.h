@@ -84,12 +84,12 @@ class Environment {
   StepOutcome step(Situation& s, int action) const {
     const int level = action_level_[action], motion = action_motion_[action];  // decode without a division
     const ActionEffect& e = table_.at(action);
-    const float d_g = s.d_g, d_i = s.d_i;
+    const float d_g = s.d_g;
     move(s.goal_left, s.goal_forward, e);
     move(s.source_left, s.source_forward, e);
     s.update_polar();
     StepOutcome out;
-    out.at_source = s.d_i < reward_.source_radius() && d_i >= reward_.source_radius();  // entering its radius
+    out.at_source = s.d_i < reward_.source_radius();  // at the source: within its radius (reward.h)
     out.at_goal = s.d_g < reward_.goal_radius();
     out.reward = reward_(std::fabs(s.theta_g), d_g, s.d_g, s.alpha_level, level, out.at_source);  // Eq. 17
     s.alpha_level = out.at_source ? states_.top_alpha_level() : level;  // Eq. 13, forced at the source

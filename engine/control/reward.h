@@ -8,13 +8,14 @@
 //
 // Our reading of "when a character reaches the source of influence, alpha is forced to be 1.0" (the
 // choices are explained in the README and tested):
-// - "Reaches" = the action enters RewardParams::source_radius of the source (it started outside and ends
-//   inside); the next state's alpha is then 1 (the override of Eq. 13), and Eq. 16 applies as usual to
-//   the actions after it, so dropping back from 1 costs. The radius is 1 m, not the goal's 0.4 m: with
-//   gamma = 0.3 the learner sees about one footstep ahead, so a forcing at 0.4 m only teaches a last-moment
-//   jump of alpha, and a forcing at every step inside a radius would pin the character (at alpha = 1 the
-//   root weight w_r is 1 and Eq. 3-4 leave no stride). Forcing once on entry at 1 m teaches the character
-//   to be well prepared by 1 m and to stay prepared while it closes in.
+// - "Reaches" = the action ends within RewardParams::source_radius of the source; the next state's alpha
+//   is then 1 (the override of Eq. 13), after every such action. The radius is 0.85 m, not the goal's
+//   0.4 m: the learner looks only a few footsteps ahead (gamma), so a forcing only at arrival teaches a
+//   last-moment jump of alpha. Forcing once on entering a 1 m radius (tried) teaches preparation by 1 m
+//   but lets the character relax again inside (0.4 on arrival); forcing at every step inside 1 m pins
+//   some characters (at alpha = 1 the root weight w_r is 1 and Eq. 3-4 leave no stride, so each step
+//   inside costs a penalty to move at all) and 10% of them never arrive. 0.85 m at every step gives
+//   both: prepared by 1 m and arriving at the highest level that still moves (README figures).
 // - In that step the played alpha changes twice: from the state's alpha to the action's (Eq. 13) and then
 //   from the action's alpha to 1 at the source. Eq. 16's penalty is applied to each change:
 //   f_alpha = 1 - |a.alpha - alpha|^C - |1 - a.alpha|^C. Penalising only the state-to-state change

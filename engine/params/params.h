@@ -102,10 +102,10 @@ struct RewardParams {
   float w_d = 0.3f;
   float w_alpha = 0.6f;
   float goal_radius = 0.4f;       // m: the goal counts as reached within this distance
-  // m: entering this radius of the source is "reaching" it: alpha is forced to 1 once (Eq. 13). Not the
-  // goal's 0.4 m: the learner looks only a few footsteps ahead, so a forcing at arrival teaches a
-  // last-moment jump; at 1 m (the reach of a kick or a punch) preparation is under way on arrival.
-  float source_radius = 1.0f;
+  // m: within this radius of the source the character has "reached" it: alpha is forced to 1 (Eq. 13).
+  // Not the goal's 0.4 m: the learner looks only a few footsteps ahead, so a forcing at arrival teaches a
+  // last-moment jump; 0.85 m (about the reach of a kick or a punch) is chosen in engine/control/reward.h.
+  float source_radius = 0.85f;
 };
 
 // Sec. 6.3-6.4: SARSA, Eq. 18-19.

@@ -61,19 +61,24 @@ TEST_CASE("reaching the source forces alpha to 1; reaching the goal ends the epi
   const Params params;
   const auto world = test::hand_made_world(params);
   const Environment env = test::make_environment(params, world.table);
-  REQUIRE(params.reward.source_radius == doctest::Approx(1.0));
-  // Source 1.3 m ahead, goal 3 m ahead: a walk footstep at alpha 0 (0.6 m) enters the 1 m radius.
+  REQUIRE(params.reward.source_radius == doctest::Approx(0.85));
+  // Source 1.3 m ahead, goal 3 m ahead: a walk footstep at alpha 0 (0.6 m) ends 0.7 m from the source.
   Situation s = make_situation({0, 0}, 0.0f, {0, 3}, {0, 1.3f}, 2, 0);
   const StepOutcome out = env.step(s, env.actions().index({0, 0}));
   CHECK(out.at_source);
   CHECK_FALSE(out.at_goal);
   CHECK(s.alpha_level == env.states().top_alpha_level());
   CHECK(out.reward == doctest::Approx(reward_terms(0.0f, 3.0f, 2.4f, 0.4f, 0.0f, true, params.reward).total).epsilon(1e-5));
-  // Inside the radius the forcing is over: Eq. 13 and 16 as usual (dropping from 1 to 0.8 costs 0.04).
+  // Still within the radius after a short footstep at 0.8: forced again, both changes of alpha penalised.
   const StepOutcome inside = env.step(s, env.actions().index({0, 4}));
-  CHECK_FALSE(inside.at_source);
-  CHECK(s.alpha_level == 4);
-  CHECK(inside.reward == doctest::Approx(reward_terms(0.0f, 2.4f, s.d_g, 1.0f, 0.8f, false, params.reward).total).epsilon(1e-5));
+  CHECK(inside.at_source);
+  CHECK(s.alpha_level == env.states().top_alpha_level());
+  CHECK(inside.reward == doctest::Approx(reward_terms(0.0f, 2.4f, s.d_g, 1.0f, 0.8f, true, params.reward).total).epsilon(1e-5));
+  // Past the source and out of its radius: Eq. 13 as usual.
+  Situation away = make_situation({0, 0}, 0.0f, {0, 3}, {0, -0.7f}, 5, 0);
+  const StepOutcome leaving = env.step(away, env.actions().index({0, 2}));
+  CHECK_FALSE(leaving.at_source);
+  CHECK(away.alpha_level == 2);
   Situation g = make_situation({0, 0}, 0.0f, {0, 0.7f}, {0, 0.7f}, 2, 0);
   CHECK(env.step(g, env.actions().index({0, 0})).at_goal);
 }
