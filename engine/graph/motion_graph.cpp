@@ -475,10 +475,20 @@ MotionGraph MotionGraph::build(const MotionSet& set, const GraphParams& params) 
     if (after >= 1) {
       e.align = g.align(c, mc.loop_last + 1, c, mc.loop_first, std::min(after, window_span));
       e.distance = g.distance(c, mc.loop_last + 1, c, mc.loop_first, std::min(after, window_span));
+    } else if (mc.loop_first >= 1) {
+      e.align = g.align(c, mc.loop_last, c, mc.loop_first - 1, 1);
+      e.distance = g.distance(c, mc.loop_last, c, mc.loop_first - 1, 1);
     } else {
-      const int before = std::max(0, mc.loop_first - 1);
-      e.align = g.align(c, mc.loop_last, c, before, 1);
-      e.distance = g.distance(c, mc.loop_last, c, before, 1);
+      // The loop is the whole clip: put loop_first on loop_last, then one frame of its own root motion
+      // further on, so that the root does not stand still for a frame at the wrap.
+      e.align = g.align(c, mc.loop_last, c, mc.loop_first, 1);
+      e.distance = g.distance(c, mc.loop_last, c, mc.loop_first, 1);
+      if (mc.loop_first + 1 < mc.clip.frame_count()) {
+        const auto& cloud = g.clouds_[static_cast<size_t>(c)];
+        const glm::vec3 step = e.align.apply(cloud[static_cast<size_t>((mc.loop_first + 1) * g.points_)]) -
+                               e.align.apply(cloud[static_cast<size_t>(mc.loop_first * g.points_)]);
+        e.align.offset += glm::vec2(step.x, step.z);
+      }
     }
     g.edges_.push_back(e);
   }

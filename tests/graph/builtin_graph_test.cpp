@@ -74,3 +74,28 @@ TEST_CASE("player: an action that cannot follow is refused") {
   CHECK_THROWS_AS(player.push(kick), std::invalid_argument);  // no target -> target edges
   for (int n : player.available()) CHECK(g.nodes()[static_cast<size_t>(n)].core);
 }
+
+TEST_CASE("player: the root keeps moving through a loop wrap") {
+  const MotionSet& set = builtin();
+  const MotionGraph g = MotionGraph::build(set, Params().graph);
+  const int walk = g.find("walk");
+  REQUIRE(walk >= 0);
+  Player player(g);
+  player.start(walk);
+  player.push(walk);
+  REQUIRE(player.switches().size() == 1);
+  const int wrap = player.switches()[0].stream_frame;
+  // Root speed (horizontal) on the frames around the wrap stays within 30% of the clip's mean speed.
+  const MotionClip& mc = set.clips[static_cast<size_t>(walk)];
+  const glm::vec3 span = mc.clip.frames.back().root_position - mc.clip.frames.front().root_position;
+  const float mean = glm::length(glm::vec2(span.x, span.z)) / static_cast<float>(mc.clip.frame_count() - 1);
+  Pose a, b;
+  for (int f = wrap - 3; f <= wrap + 3; ++f) {
+    CAPTURE(f);
+    player.pose_at(f, a);
+    player.pose_at(f + 1, b);
+    const float step = glm::length(glm::vec2(b.root_position.x - a.root_position.x, b.root_position.z - a.root_position.z));
+    CHECK(step > 0.7f * mean);
+    CHECK(step < 1.3f * mean);
+  }
+}
