@@ -154,6 +154,42 @@ TEST_CASE("Retargeting a cmu31 walk to the built-in skeleton and back keeps cont
   check_round_trip(test::cmu31_clip("walk_69_01.bvh"), "cmu31.json");
 }
 
+// The other direction: a clip of the built-in library onto each CMU skeleton and back.
+void check_from_builtin(const std::shared_ptr<const Skeleton>& theirs, const std::string& map_file) {
+  const Params params;
+  const MotionSet set = make_builtin_motion_set(params);
+  const int walk = set.find("walk");
+  REQUIRE(walk >= 0);
+  const Clip& ours = set.clips[static_cast<size_t>(walk)].clip;
+  const JointMap map = load_joint_map(test::repo() + "/assets/retarget/" + map_file);
+  const Retargeter there(ours.skeleton, theirs, inverted(map));
+  const Clip on_theirs = there.retarget(ours);
+  const ContactReport a = compare_contacts(ours, on_theirs, there.root_scale());
+  MESSAGE("built-in walk -> " << map_file << ": " << a.onsets << " onsets, worst onset shift " << a.worst_onset_shift
+                              << " frames, " << a.frames_differing << " differing foot-frames of " << 2 * ours.frame_count()
+                              << ", worst planted slide " << a.worst_slide * 100.0f << " cm/frame");
+  CHECK(a.onsets >= 2);
+  CHECK(a.worst_onset_shift <= 1);
+  CHECK(a.frames_differing <= ours.frame_count() / 20);
+  // Our feet bend at the ball (a toe joint) and our clips plant heel and toes exactly; the daz43 foot is
+  // rigid and of another shape, so while our walk rolls over its planted toes the daz43 toe tip, aimed at
+  // ours, moves up to 0.7 cm per frame (60 fps); cmu31's longer foot cannot quite reach our toe (0.5 cm).
+  // The other direction (their clips on our skeleton) stays within the 0.5 cm bound, above.
+  CHECK(a.worst_slide <= 2.0f * kPlanted);
+  const Retargeter back(theirs, ours.skeleton, map);
+  const ContactReport b = compare_contacts(ours, back.retarget(on_theirs), 1.0f);
+  MESSAGE("  and back: worst onset shift " << b.worst_onset_shift << ", " << b.frames_differing
+                                          << " differing foot-frames, worst planted slide " << b.worst_slide * 100.0f << " cm/frame");
+  CHECK(b.worst_onset_shift <= 1);
+  CHECK(b.frames_differing <= ours.frame_count() / 20);
+  CHECK(b.worst_slide <= 2.0f * kPlanted);
+}
+
+TEST_CASE("Retargeting the built-in walk to the daz43 and cmu31 skeletons and back keeps contacts and planted feet") {
+  check_from_builtin(test::daz43_clip("walk_02_01.bvh", 1, 2).skeleton, "daz43.json");
+  check_from_builtin(test::cmu31_clip("walk_69_01.bvh").skeleton, "cmu31.json");
+}
+
 TEST_CASE("The shipped joint maps name real joints of their skeletons") {
   const auto ours = builtin_skeleton();
   const std::vector<std::pair<std::string, std::shared_ptr<const Skeleton>>> cases = {
