@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "engine/graph/player.h"
@@ -45,6 +46,22 @@ bool MotionStream::queue(int node) {
     pieces_.push_back(Piece{switches[k].stream_frame, e.to, e.to_frame});
   }
   return true;
+}
+
+void MotionStream::switch_to(int node, glm::vec2 position, float heading) {
+  const MotionClip& mc = graph_->set().clips.at(static_cast<size_t>(node));
+  const int from = this->node(), from_frame = clip_frame();
+  const int first = mc.cyclic ? mc.loop_first : 0, last = mc.cyclic ? mc.loop_last : mc.clip.frame_count() - 1;
+  int best = first;
+  float best_distance = std::numeric_limits<float>::infinity();
+  for (int j = first; j <= last; ++j) {
+    const float d = graph_->distance(from, from_frame, node, j, graph_->window_frames());
+    if (d < best_distance) {
+      best_distance = d;
+      best = j;
+    }
+  }
+  start(node, best, position, heading);
 }
 
 std::vector<int> MotionStream::available() const { return player_->available(); }

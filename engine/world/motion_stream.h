@@ -36,6 +36,9 @@ class MotionStream {
   // Queues the motion to follow the last queued one; false (and nothing changes) if the graph has no
   // edge for it from there.
   bool queue(int node);
+  // Switches to `node` now, at the frame of its loop that best matches the frame playing (the graph's
+  // point-cloud distance over its window), placed where `position`/`heading` say; time restarts at 0.
+  void switch_to(int node, glm::vec2 position, float heading);
   // The motions queue() would accept now.
   std::vector<int> available() const;
   // The last queued motion has begun (or none is pending): time to queue the next.

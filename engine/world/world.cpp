@@ -158,6 +158,8 @@ struct World::Runtime {
   SynthesisScratch scratch;
   float next_decision = 0.0f;
   bool reseed = false;           // the next synthesized frame continues from the current position
+  glm::vec3 last_displacement{0.0f};       // the locomotion's last step (m per tick)
+  glm::vec3 synthesis_previous_root{0.0f};
   Pose fade_from;                // cross-fade from this pose ...
   float fade_left = 0.0f;        // ... over the remaining seconds
   float fade_total = 0.0f;
@@ -359,10 +361,22 @@ void World::control(int index) {
     c.motion = d.motion;
     c.chosen_alpha = d.alpha;
     rt.next_decision = time_ + std::max(ctl.effect(d.action).duration, params_.runtime.fixed_dt);
+    // The controller acts per footstep (Sec. 6's actions), but the graph's edges between two core clips
+    // come about once per gait cycle: waiting for one would play the old motion for up to two more steps
+    // (and turn the character past its goal). So a new core motion starts at once, entered at the frame of
+    // its loop that best matches the frame playing (the graph's point-cloud distance) and cross-faded over
+    // GraphParams::blend_s. Loops and the returns from target motions still follow graph edges.
+    const bool stay = (c.control == Control::User && c.reached_goal) || (c.control == Control::Opponent && c.defeated);
+    const int wanted = stay ? assets_->idle_node : assets_->core_nodes[static_cast<size_t>(d.motion)];
+    if (wanted != rt.stream.node()) {
+      rt.fade_from = c.pose;
+      rt.fade_total = rt.fade_left = params_.graph.blend_s;
+      rt.stream.switch_to(wanted, c.position, c.heading);
+      rt.reseed = true;
+    }
   }
   if (rt.stream.needs_next()) {
-    const bool stay = (c.control == Control::User && c.reached_goal) || (c.control == Control::Opponent && c.defeated);
-    const int wanted = stay ? assets_->idle_node : assets_->core_nodes[static_cast<size_t>(ctl.motion())];
+    const int wanted = rt.stream.node();  // keep looping what plays (a change comes with a decision, above)
     if (!rt.stream.queue(wanted)) {
       // The graph has no edge to the wanted motion from here (e.g. a set whose idle joins nothing):
       // switch anyway, placed where the character stands and cross-faded over GraphParams::blend_s.
@@ -530,10 +544,12 @@ void World::step_character(int index) {
       rt.synthesis.started = true;
       rt.synthesis.root_xz = c.position;
       in.has_displacement = true;
-      in.displacement = glm::vec3(0.0f);
+      in.displacement = rt.last_displacement;  // the stream's last step, so the gait does not hitch
       rt.reseed = false;
     }
     synthesizer_->step(in, rt.synthesis, rt.scratch, out, &c.report);
+    if (!in.has_displacement) rt.last_displacement = rt.stream.pose().root_position - rt.synthesis_previous_root;
+    rt.synthesis_previous_root = rt.stream.pose().root_position;
     c.clip = rt.stream.node();
   }
   if (rt.fade_left > 0.0f) {
