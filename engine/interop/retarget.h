@@ -8,8 +8,9 @@
 // How a pose moves across (every Skeleton's rest pose has identity rotations, so a joint's world rotation
 // is its world-space rotation away from the rest pose):
 // - rest-pose differences: for each mapped pair, a constant alignment A_k turns the target bone's rest
-//   direction onto the source bone's rest direction (two directions when the joint has two mapped
-//   children, e.g. the pelvis: up the spine and across the hips, which also fixes the twist);
+//   directions (to its nearest mapped descendants, or to its End Site) onto the source's: the shortest arc
+//   for one direction, the least-squares rotation (Horn 1987) for several, e.g. the pelvis: up the spine and
+//   to both hips, which also fixes the twist. Both are exact inverses when source and target swap;
 // - per frame, the target joint's world rotation is the source joint's world rotation times A_k (the
 //   world-space delta from rest is transferred); unmapped target joints keep their rest rotation relative
 //   to their parent; local rotations follow from the world ones;
