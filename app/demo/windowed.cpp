@@ -4,6 +4,7 @@
 #include <imgui.h>
 
 #include <cctype>
+#include <cmath>
 #include <iostream>
 #include <stdexcept>
 
@@ -126,6 +127,10 @@ void run_window(const DemoMotions& motions, const WindowOptions& options) {
     app.timings.add(kFinish, ms_since(t));
     if (options.quit_after >= 0 && frame >= options.quit_after) app.quit_requested = true;
   }
+  // The state the input left behind (scripts/xvfb_smoke.sh checks that its keys arrived).
+  const DemoClip& clip = app.motions().clips[app.player.clip];
+  std::cout << "prep-demo: closing: camera yaw " << std::lround(app.camera.yaw * 180.0f / 3.14159265f) << " deg, clip "
+            << clip.clip.name << (app.player.playing ? " playing" : " paused") << " at " << app.player.time << " s\n";
 }
 
 }  // namespace prep::demo
