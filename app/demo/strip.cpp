@@ -52,10 +52,8 @@ render::Image render_strip(const DemoClip& clip, const StripOptions& options) {
     for (int i = 0; i < options.frames; ++i) {
       char label[160];
       const int frame = static_cast<int>(times[i] * clip.clip.fps + 0.5f);
-      if (i == 0)
-        std::snprintf(label, sizeof label, "%s  t=%.2f s (frame %d)", clip.clip.name.c_str(), times[i], frame);
-      else
-        std::snprintf(label, sizeof label, "t=%.2f s (frame %d)", times[i], frame);
+      std::snprintf(label, sizeof label, "%s%st=%.2f s (frame %d)", i == 0 ? clip.clip.name.c_str() : "",
+                    i == 0 ? "\n" : "", times[i], frame);  // the clip's name on its own line: tiles are narrow
       const ImVec2 at(static_cast<float>(i * options.tile_width + 6), 6.0f);
       draw->AddText(ImVec2(at.x + 1, at.y + 1), IM_COL32(255, 255, 255, 160), label);
       draw->AddText(at, IM_COL32(20, 20, 20, 255), label);
