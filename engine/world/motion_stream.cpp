@@ -61,7 +61,21 @@ void MotionStream::switch_to(int node, glm::vec2 position, float heading) {
       best = j;
     }
   }
-  start(node, best, position, heading);
+  // Place the new clip as the graph would across an edge: the floor alignment of the two windows (Kovar's
+  // closed form) composed with where the playing clip stands now, then moved to `position` (the
+  // synthesized root, which Eq. 3-4 keeps behind the raw locomotion). `heading` is only a fallback.
+  (void)heading;
+  const Pose& raw = graph_->set().clips[static_cast<size_t>(from)].clip.frames[static_cast<size_t>(from_frame)];
+  FloorTransform now;
+  now.angle = heading_of(pose_.rotations[0]) - heading_of(raw.rotations[0]);
+  const glm::vec3 turned = now.apply(glm::vec3(raw.root_position.x, 0.0f, raw.root_position.z));
+  now.offset = glm::vec2(pose_.root_position.x, pose_.root_position.z) - glm::vec2(turned.x, turned.z);
+  FloorTransform place = graph_->align(from, from_frame, node, best, graph_->window_frames()).then(now);
+  place.offset += position - glm::vec2(pose_.root_position.x, pose_.root_position.z);
+  player_->start(node, best, place);
+  pieces_.assign(1, Piece{0, node, best});
+  time_ = 0.0f;
+  sample();
 }
 
 std::vector<int> MotionStream::available() const { return player_->available(); }

@@ -439,6 +439,8 @@ void World::try_auto_launch(int index) {
   if (t.clip < 0) return;
   const glm::vec2 fwd = forward_of(c.heading);
   const glm::vec2 to_object = c.source_object_position - c.position;
+  // Fully prepared (alpha = 1 stops the stride, Eq. 3-4) within the source radius: it has arrived.
+  const bool stalled = c.chosen_alpha >= 1.0f;
   bool go = false;
   if (c.source_object >= 0 && is_across(objects_[static_cast<size_t>(c.source_object)].spec.type)) {
     // The launch line: the character's distance to it along the approach.
@@ -447,14 +449,13 @@ void World::try_auto_launch(int index) {
     if (len > 1e-4f) {
       const glm::vec2 dir = approach / len;
       const float along = glm::dot(to_object, dir);
-      go = glm::dot(fwd, dir) >= kCos45 && along <= t.reach && along > 0.0f;
+      go = glm::dot(fwd, dir) >= kCos45 && along > 0.0f && (along <= t.reach || (stalled && along <= t.reach + params_.reward.source_radius));
     }
   } else {
     const float d = glm::length(to_object);
     const float ahead = glm::dot(to_object, fwd);
     // A character or a ball: within reach (and the source radius for a target that moves), ahead.
-    go = ahead >= kCos45 * d && d <= t.reach + params_.reward.source_radius * (c.source_character >= 0 ? 1.0f : 0.0f) &&
-         d > 0.0f;
+    go = ahead >= kCos45 * d && d > 0.0f && (d <= t.reach || ((stalled || c.source_character >= 0) && d <= t.reach + params_.reward.source_radius));
   }
   if (!go) return;
   if (start_target(index, c.prepared_for, c.source_object, c.source_character, true) && c.control == Control::Opponent)
