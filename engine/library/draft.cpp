@@ -1,8 +1,6 @@
 #include "engine/library/draft.h"
 
 #include <algorithm>
-#include <cstdio>
-#include <cstdlib>
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -282,7 +280,6 @@ Clip realize(const Draft& draft, RealizeReport* report) {
         ++report->unreachable_frames;
         const float over = glm::length(h.end - pos[S(limb.upper)]) - chain.upper_length - chain.lower_length;
         report->worst_overreach = std::max(report->worst_overreach, over);
-        if (std::getenv("PREP_DEBUG_IK")) std::fprintf(stderr, "%s f%d %s%d over %.4f\n", draft.name.c_str(), f, limb.is_leg ? "leg" : "arm", limb.side, over);
       }
       Pose& pose = clip.frames[S(f)];
       const glm::quat middle_local = glm::angleAxis(sol.hinge_angle, chain.hinge_axis);

@@ -41,9 +41,9 @@ constexpr float kElbowSwing = 8 * kDeg;
 // Forward speed of the body over the cycle: slowest at mid-stance, fastest at double support (the
 // inverted-pendulum exchange of kinetic and potential energy), +-8% (Winter 1991).
 constexpr float kSpeedModulation = 0.08f;
-// Our sagittal-only leg chain carries the toe too low through swing (real limbs add hip hiking and
-// circumduction); this much is added to the swing foot's height at mid-swing so the toe clears the floor
-// by the 1-2 cm of normal gait at its lowest and rises ~10 cm early in swing.
+// Our sagittal-only leg chain carries the toe too low through swing (real limbs add pelvic hiking and a
+// little circumduction); this much is added to the swing foot's height at mid-swing so that the toe
+// clears the floor all through the swing.
 constexpr float kSwingLift = 0.06f;
 // The pelvis stays this much below the height the stance legs allow, so that the sway, the pelvic
 // rotation and the turns (which the height plan ignores) never straighten a stance knee completely.
