@@ -7,6 +7,7 @@
 
 #include "app/demo/headless.h"
 #include "app/demo/motions.h"
+#include "app/demo/scenario_run.h"
 #include "app/demo/strip.h"
 #include "app/demo/windowed.h"
 #include "app/render/gl_context.h"
@@ -46,7 +47,33 @@ int main(int argc, char** argv) {
   cli.add_option("--screenshot-after", screenshot_after, "Window: frame after which --screenshot is taken (-1: on closing, e.g. Escape)")->capture_default_str();
   cli.add_option("--quit-after", quit_after, "Window: close after this many frames");
   cli.add_flag("--no-vsync", no_vsync, "Window: do not wait for the display's refresh");
+  std::string scenario, frames_dir, video;
+  float seconds = 30.0f;
+  bool json = false;
+  cli.add_option("--scenario", scenario, "Headless: run this scenario (engine/world) and draw it");
+  cli.add_option("--seconds", seconds, "Scenario: simulated seconds")->capture_default_str();
+  cli.add_option("--frames-dir", frames_dir, "Scenario: write a PNG per frame (30 frames/s) into this folder");
+  cli.add_option("--video", video, "Scenario: write an MP4 through ffmpeg");
+  cli.add_flag("--json", json, "Scenario: print the launches (action, alpha_at_launch, time) and the goal as JSON");
   CLI11_PARSE(cli, argc, argv);
+  if (headless && !scenario.empty()) {
+    try {
+      ScenarioRunOptions o;
+      o.scenario = scenario;
+      o.seconds = seconds;
+      o.width = width > 0 ? width : o.width;
+      o.height = height > 0 ? height : o.height;
+      o.screenshot = screenshot;
+      o.frames_dir = frames_dir;
+      o.video = video;
+      o.params = params_file;
+      o.json = json;
+      return run_scenario_headless(o);
+    } catch (const std::exception& e) {
+      std::cerr << "prep-demo: " << e.what() << "\n";
+      return 1;
+    }
+  }
 
   try {
     const Params params = params_file.empty() ? Params{} : load_params(params_file);
