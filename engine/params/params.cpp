@@ -25,7 +25,8 @@ template <class F> void fields(BlendParams& p, F&& f) {
   f("C_override", p.C_override); f("c_override", p.c_override); f("method", p.method);
 }
 template <class F> void fields(IkParams& p, F&& f) {
-  f("knee_soft_start", p.knee_soft_start); f("reach_limit", p.reach_limit); f("release_s", p.release_s); f("enabled", p.enabled);
+  f("knee_soft_start", p.knee_soft_start); f("reach_limit", p.reach_limit); f("release_s", p.release_s); f("pivot_speed", p.pivot_speed);
+  f("max_root_drop", p.max_root_drop); f("drop_recovery_speed", p.drop_recovery_speed); f("enabled", p.enabled);
 }
 template <class F> void fields(BalanceParams& p, F&& f) {
   f("w_b", p.w_b); f("w_s", p.w_s); f("w_m", p.w_m); f("max_steps", p.max_steps);

@@ -60,6 +60,9 @@ struct IkParams {
   float knee_soft_start = 0.97f;  // fraction of full leg length where the reach starts being softened
   float reach_limit = 0.999f;     // fraction of full leg length the softened reach tends to: the knee keeps ~5 deg
   float release_s = 0.2f;         // s: after lift-off a foot's IK correction fades out over this time
+  float pivot_speed = 0.15f;      // m/s: heel and toe both slower than this = a flat foot, both pinned
+  float max_root_drop = 0.2f;     // m: the pelvis may be lowered at most this much to keep planted feet in reach
+  float drop_recovery_speed = 0.3f;  // m/s: how fast that drop recovers when no longer needed
   bool enabled = true;
 };
 

@@ -31,9 +31,10 @@ inline glm::vec3 distal_point(const Skeleton& skeleton, const BalanceModel::Part
 void BalanceScratch::resize(int joints, int parts) {
   const size_t n = static_cast<size_t>(joints), m = static_cast<size_t>(parts);
   for (auto* v : {&positions, &trial_positions, &joint_point_gradient, &end_point_gradient, &subtree_force,
-                  &subtree_torque, &joint_gradient}) {
+                  &subtree_torque, &joint_gradient, &subtree_moment}) {
     v->resize(n);
   }
+  subtree_mass.resize(n);
   rotations.resize(n);
   trial_rotations.resize(n);
   for (auto* v : {&centroids, &trial_centroids, &part_gradient}) v->resize(m);
@@ -55,6 +56,12 @@ BalanceModel BalanceModel::build(const Skeleton& skeleton, const BodyMap& body, 
     if (j < static_cast<int>(body.upper_body.size()) && body.upper_body[static_cast<size_t>(j)]) {
       model.optimized.push_back(j);
     }
+  }
+  model.joint_mass.assign(static_cast<size_t>(skeleton.size()), 0.0f);
+  model.end_mass.assign(static_cast<size_t>(skeleton.size()), 0.0f);
+  for (const Part& part : model.parts) {
+    model.joint_mass[static_cast<size_t>(part.proximal)] += part.mass * (1.0f - part.f);
+    (part.distal_is_end_site ? model.end_mass : model.joint_mass)[static_cast<size_t>(part.distal)] += part.mass * part.f;
   }
   return model;
 }
@@ -140,20 +147,38 @@ void balance_gradient(const Skeleton& skeleton, const BalanceModel& model, const
     const glm::vec3 end = s.positions[j] + s.rotations[j] * skeleton.joints[j].end_site;
     s.subtree_force[j] = ge;
     s.subtree_torque[j] = glm::cross(end, ge);
+    s.subtree_mass[j] = model.end_mass[j];
+    s.subtree_moment[j] = model.end_mass[j] * end;
   }
   for (size_t j = n; j-- > 0;) {
     const glm::vec3 x = s.positions[j];
     // Points moved by a rotation at j: its End Site and everything below it, not its own origin.
     s.joint_gradient[j] = s.subtree_torque[j] - glm::cross(x, s.subtree_force[j]);
+    // The COM weight below j (for com_response) is read before j's own position joins it, like the gradient.
+    s.subtree_moment[j] -= s.subtree_mass[j] * x;  // now Q_j - M_j x_j
     const glm::vec3 gj = s.joint_point_gradient[j];
+    const glm::vec3 lever = s.subtree_moment[j];
     s.subtree_force[j] += gj;
     s.subtree_torque[j] += glm::cross(x, gj);
     const int parent = skeleton.joints[j].parent;
     if (parent >= 0) {
-      s.subtree_force[static_cast<size_t>(parent)] += s.subtree_force[j];
-      s.subtree_torque[static_cast<size_t>(parent)] += s.subtree_torque[j];
+      const size_t p = static_cast<size_t>(parent);
+      s.subtree_force[p] += s.subtree_force[j];
+      s.subtree_torque[p] += s.subtree_torque[j];
+      const float mass_here = s.subtree_mass[j] + model.joint_mass[j];
+      s.subtree_mass[p] += mass_here;
+      s.subtree_moment[p] += lever + mass_here * x;  // back to a plain weighted sum for the parent
     }
   }
+}
+
+glm::vec3 com_response(const BalanceModel& model, const BalanceScratch& s) {
+  glm::vec3 v(0.0f);
+  for (int j : model.optimized) {
+    const size_t jj = static_cast<size_t>(j);
+    v += glm::cross(-s.joint_gradient[jj], s.subtree_moment[jj]);
+  }
+  return v;
 }
 
 BalanceResult optimize_balance(const Skeleton& skeleton, const BalanceModel& model, const BalanceParams& params,
@@ -166,10 +191,23 @@ BalanceResult optimize_balance(const Skeleton& skeleton, const BalanceModel& mod
   result.after = current;
   result.optimized = true;
 
-  float step = params.step_size;
   s.trial.root_position = pose.root_position;
   for (int iteration = 0; iteration < params.max_steps; ++iteration) {
     balance_gradient(skeleton, model, params, targets, s);
+    // First trial step: where the linearized COM comes closest to the support centre along the descent
+    // direction, capped at step_size; then backtracking halves it.
+    float step = params.step_size;
+    {
+      const glm::vec3 com = model_center_of_mass(model, s.centroids.data());
+      const glm::vec2 d(com.x - targets.support_centre.x, com.z - targets.support_centre.y);
+      const glm::vec3 r = com_response(model, s);
+      const glm::vec2 v(r.x, r.z);
+      const float vv = glm::dot(v, v);
+      if (vv > 1e-12f) {
+        const float best = -glm::dot(d, v) / vv;
+        if (best > 0.0f) step = std::min(best, params.step_size);
+      }
+    }
     bool accepted = false;
     BalanceCost trial_cost;
     for (int halving = 0; halving <= params.max_halvings; ++halving, step *= 0.5f) {
@@ -199,7 +237,6 @@ BalanceResult optimize_balance(const Skeleton& skeleton, const BalanceModel& mod
     current = trial_cost;
     ++result.steps;
     if (improvement < params.tolerance) break;
-    step = std::min(2.0f * step, params.step_size);  // let the next line search start a little longer
   }
   result.after = current;
   return result;

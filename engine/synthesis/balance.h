@@ -29,6 +29,9 @@ struct BalanceModel {
   };
   std::vector<Part> parts;          // in the order of MassModel::segments
   std::vector<int> optimized;       // the upper-body joints (Sec. 5.3: only they are adjusted)
+  // The COM as a weighted sum of joint positions and End Sites: COM = sum_j joint_mass[j] * x_j +
+  // end_mass[j] * e_j (from the parts' masses and centroid fractions), for the COM's response to a step.
+  std::vector<float> joint_mass, end_mass;
   static BalanceModel build(const Skeleton& skeleton, const BodyMap& body, const MassModel& mass);
 };
 
@@ -41,6 +44,8 @@ struct BalanceScratch {
   std::vector<glm::vec3> joint_point_gradient;        // dC/d(joint position)
   std::vector<glm::vec3> end_point_gradient;          // dC/d(End Site position)
   std::vector<glm::vec3> subtree_force, subtree_torque;
+  std::vector<float> subtree_mass;                    // COM weight carried below each joint
+  std::vector<glm::vec3> subtree_moment;              // sum of weight * point below each joint
   std::vector<glm::vec3> joint_gradient;              // dC/d(world rotation vector at the joint)
   Pose trial;
   void resize(int joints, int parts);
@@ -76,9 +81,16 @@ BalanceCost balance_cost(const BalanceModel& model, const BalanceParams& params,
 // j's subtree by theta x (p - x_j), so dC/dtheta_j = sum_p (p - x_j) x dC/dp = T_j - x_j x S_j with
 // S_j = sum dC/dp and T_j = sum p x dC/dp over the points below j: one backward pass accumulates both
 // subtree sums, instead of one forward-kinematics pass per finite difference.
-// Needs scratch.positions/rotations/centroids to hold the posture's; fills scratch.joint_gradient.
+// Needs scratch.positions/rotations/centroids to hold the posture's; fills scratch.joint_gradient and the
+// subtree mass sums from which com_response() gives the COM's first-order motion for a step.
 void balance_gradient(const Skeleton& skeleton, const BalanceModel& model, const BalanceParams& params,
                       const BalanceTargets& targets, BalanceScratch& scratch);
+
+// First-order motion of the COM when every optimized joint j turns by the world rotation vector
+// -joint_gradient[j] (the steepest-descent direction): sum_j -g_j x (Q_j - M_j x_j), with M_j and Q_j the
+// COM weight and weighted point sum below j. Used to size the first trial step of each line search so the
+// COM would land on the support centre (Sec. 5.3's gradient descent, with a better first guess).
+glm::vec3 com_response(const BalanceModel& model, const BalanceScratch& scratch);
 
 struct BalanceResult {
   bool optimized = false;       // false when skipped (alpha below the threshold, disabled, no support)

@@ -37,10 +37,10 @@ float smoothstep01(float x) {
 
 glm::vec3 solve_leg(const Skeleton& skeleton, const LegChain& leg, const IkParams& params, Pose& pose,
                     const std::vector<glm::vec3>& wp, const std::vector<glm::quat>& wr, glm::vec3 target,
-                    const glm::quat& foot_world, glm::vec3 forward) {
+                    const glm::quat& foot_world, glm::vec3 forward, glm::vec3 body_shift) {
   const size_t hip = static_cast<size_t>(leg.hip), knee = static_cast<size_t>(leg.knee),
                ankle = static_cast<size_t>(leg.ankle);
-  const glm::vec3 a = wp[hip], b = wp[knee], c = wp[ankle];
+  const glm::vec3 a = wp[hip] + body_shift, b = wp[knee] + body_shift, c = wp[ankle] + body_shift;
   const float upper = glm::length(b - a), lower = glm::length(c - b);
   const float full = upper + lower;
   const float eps = 1e-5f * full;
@@ -94,50 +94,93 @@ glm::vec3 solve_leg(const Skeleton& skeleton, const LegChain& leg, const IkParam
   return a + r2 * (r0 * (b - a) + (r0 * r1) * (c - b));
 }
 
+FrameContacts select_pinned_points(const FrameContacts& contacts, const std::array<float, 2>& heel_speed,
+                                   const std::array<float, 2>& toe_speed, const IkParams& params) {
+  FrameContacts pinned{};
+  for (size_t side = 0; side < 2; ++side) {
+    const float h = heel_speed[side], t = toe_speed[side];
+    const bool still = std::max(h, t) < params.pivot_speed;
+    pinned[side].heel = contacts[side].heel && (!contacts[side].toe || still || h <= t);
+    pinned[side].toe = contacts[side].toe && (!contacts[side].heel || still || t < h);
+  }
+  return pinned;
+}
+
 void apply_foot_ik(const Skeleton& skeleton, const BodyMap& body, const IkParams& params,
-                   const FrameContacts& contacts, float dt, Pose& pose, const std::vector<glm::vec3>& wp,
-                   const std::vector<glm::quat>& wr, FootPlants& plants) {
+                   const FrameContacts& pinned, float dt, Pose& pose, const std::vector<glm::vec3>& wp,
+                   const std::vector<glm::quat>& wr, FootPlants& plants, float& root_drop) {
   const glm::vec3 forward = pose.rotations[static_cast<size_t>(body.root)] * glm::vec3(0.0f, 0.0f, 1.0f);
-  for (int side = 0; side < 2; ++side) {
-    const LegChain& leg = body.legs[static_cast<size_t>(side)];
-    const FootContact& contact = contacts[static_cast<size_t>(side)];
-    FootPlant& plant = plants[static_cast<size_t>(side)];
+  std::array<glm::vec3, 2> heel{}, foot_vector{}, target{};
+  std::array<glm::quat, 2> foot_world{};
+  float required_drop = 0.0f;
+  for (size_t side = 0; side < 2; ++side) {
+    const LegChain& leg = body.legs[side];
+    const FootContact& contact = pinned[side];
+    FootPlant& plant = plants[side];
     if (!contact.heel) plant.heel_planted = false;
     if (!contact.toe) plant.toe_planted = false;
 
-    const glm::vec3 heel = wp[static_cast<size_t>(leg.ankle)];
-    const glm::vec3 heel_to_toe = toe_tip(skeleton, leg, wp, wr) - heel;
-    glm::quat foot_world = wr[static_cast<size_t>(leg.ankle)];
-    glm::vec3 foot_vector = heel_to_toe;
-    glm::vec3 target;
+    heel[side] = wp[static_cast<size_t>(leg.ankle)];
+    const glm::vec3 heel_to_toe = toe_tip(skeleton, leg, wp, wr) - heel[side];
+    foot_world[side] = wr[static_cast<size_t>(leg.ankle)];
+    foot_vector[side] = heel_to_toe;
     if (plant.heel_planted) {
-      target = plant.heel_anchor;
+      target[side] = plant.heel_anchor;
       if (plant.toe_planted && glm::length(plant.toe_anchor - plant.heel_anchor) > 1e-4f) {
         // Flat foot: turn the foot (smallest rotation) so that its toe tip points at its anchor too.
         const glm::quat align = rotation_between(heel_to_toe, plant.toe_anchor - plant.heel_anchor);
-        foot_world = glm::normalize(align * foot_world);
-        foot_vector = align * heel_to_toe;
+        foot_world[side] = glm::normalize(align * foot_world[side]);
+        foot_vector[side] = align * heel_to_toe;
       }
     } else if (plant.toe_planted) {
-      target = plant.toe_anchor - heel_to_toe;  // heel off: the foot rolls about its planted toe
+      target[side] = plant.toe_anchor - heel_to_toe;  // heel off: the foot rolls about its planted toe
     } else {
       // Free foot: the correction it had when it lifted off fades out, so the swing joins the blended pose
-      // without a jump.
+      // without a jump. (It moves with the body, so a root drop below does not change its reach.)
       plant.fade = std::max(0.0f, plant.fade - (params.release_s > 0.0f ? dt / params.release_s : 1.0f));
-      target = heel + plant.offset * smoothstep01(plant.fade);
+      target[side] = heel[side] + plant.offset * smoothstep01(plant.fade);
+      continue;
     }
-    const glm::vec3 reached = solve_leg(skeleton, leg, params, pose, wp, wr, target, foot_world, forward);
+    // A planted foot the leg cannot reach without straightening the knee past the soft start (the body
+    // was slowed by Eq. 3-4 or the legs blended toward T_p): lower the pelvis just enough.
+    const glm::vec3 hip = wp[static_cast<size_t>(leg.hip)];
+    const float full = glm::length(wp[static_cast<size_t>(leg.knee)] - hip) +
+                       glm::length(wp[static_cast<size_t>(leg.ankle)] - wp[static_cast<size_t>(leg.knee)]);
+    const float soft = std::min(std::max(params.knee_soft_start * full, glm::length(heel[side] - hip)),
+                                params.reach_limit * full);
+    const glm::vec3 v = hip - target[side];
+    const float horizontal2 = v.x * v.x + v.z * v.z;
+    const float drop = horizontal2 < soft * soft ? v.y - std::sqrt(soft * soft - horizontal2) : v.y;
+    required_drop = std::max(required_drop, drop);
+  }
+  // The drop follows what the planted feet need at once and recovers at a bounded speed, so the pelvis
+  // does not pop up when a foot lifts off.
+  root_drop = std::clamp(std::max(required_drop, root_drop - params.drop_recovery_speed * dt), 0.0f, params.max_root_drop);
+  pose.root_position.y -= root_drop;
+  const glm::vec3 body_shift(0.0f, -root_drop, 0.0f);
 
-    if (contact.heel && !plant.heel_planted) {
+  for (size_t side = 0; side < 2; ++side) {
+    const LegChain& leg = body.legs[side];
+    FootPlant& plant = plants[side];
+    const bool planted = plant.heel_planted || plant.toe_planted;
+    const glm::vec3 goal = planted ? target[side] : target[side] + body_shift;
+    const glm::vec3 reached =
+        solve_leg(skeleton, leg, params, pose, wp, wr, goal, foot_world[side], forward, body_shift);
+    if (plant.heel_planted && plant.toe_planted) {
+      // Flat foot: the toe tip follows the heel along the anchored direction; if the toe joint bent a little
+      // the tip moved along it, and the anchor goes with it so a later heel-off pivots about where it is.
+      plant.toe_anchor = reached + foot_vector[side];
+    }
+    if (pinned[side].heel && !plant.heel_planted) {
       plant.heel_planted = true;
       plant.heel_anchor = reached;
     }
-    if (contact.toe && !plant.toe_planted) {
+    if (pinned[side].toe && !plant.toe_planted) {
       plant.toe_planted = true;
-      plant.toe_anchor = reached + foot_vector;
+      plant.toe_anchor = reached + foot_vector[side];
     }
     if (plant.heel_planted || plant.toe_planted) {
-      plant.offset = reached - heel;
+      plant.offset = reached - (heel[side] + body_shift);
       plant.fade = 1.0f;
     }
   }

@@ -40,13 +40,27 @@ using FootPlants = std::array<FootPlant, 2>;  // [kLeft], [kRight]
 // length asymptotically, so the knee never snaps straight. Returns the ankle position reached.
 glm::vec3 solve_leg(const Skeleton& skeleton, const LegChain& leg, const IkParams& params, Pose& pose,
                     const std::vector<glm::vec3>& world_positions, const std::vector<glm::quat>& world_rotations,
-                    glm::vec3 target, const glm::quat& foot_world, glm::vec3 forward);
+                    glm::vec3 target, const glm::quat& foot_world, glm::vec3 forward,
+                    glm::vec3 body_shift = glm::vec3(0.0f));
 
-// The foot IK stage for one frame: updates the plants from the locomotion's contacts, solves both legs and
+// Which contact points of each foot are pinned this frame. The contact detector flags a heel or toe as in
+// contact while it is near the floor and slow, so during a step both are often flagged while the foot
+// rolls: heel strike (the toe still coming down), heel-off (the heel already rising about the toe). Pinning
+// both then would stretch the leg against the roll. So a flagged point is pinned if it is the slower of the
+// two in the locomotion, or if both are nearly still (below ik.pivot_speed: a flat foot, both pinned). The
+// foot then stays where it was planted and rolls about the point it stands on, as in the locomotion.
+// Speeds are the locomotion's heel and toe speeds (m/s).
+FrameContacts select_pinned_points(const FrameContacts& contacts, const std::array<float, 2>& heel_speed,
+                                   const std::array<float, 2>& toe_speed, const IkParams& params);
+
+// The foot IK stage for one frame: updates the plants from the pinned points (select_pinned_points), solves both legs and
 // writes the hip, knee and ankle rotations of `pose`. `world_positions` / `world_rotations` are the pose's
 // forward kinematics on entry (stale on return). dt is the frame time in seconds.
+// When a planted foot is out of the leg's soft reach, the pelvis is lowered just enough (root_drop, per
+// character state, recovering at ik.drop_recovery_speed, at most ik.max_root_drop): the foot stays planted
+// and the knee bends instead of snapping straight or the foot sliding.
 void apply_foot_ik(const Skeleton& skeleton, const BodyMap& body, const IkParams& params,
-                   const FrameContacts& contacts, float dt, Pose& pose, const std::vector<glm::vec3>& world_positions,
-                   const std::vector<glm::quat>& world_rotations, FootPlants& plants);
+                   const FrameContacts& pinned, float dt, Pose& pose, const std::vector<glm::vec3>& world_positions,
+                   const std::vector<glm::quat>& world_rotations, FootPlants& plants, float& root_drop);
 
 }  // namespace prep

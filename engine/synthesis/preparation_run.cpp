@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "engine/motion/kinematics.h"
 #include "engine/synthesis/trajectory.h"
 
 namespace prep {
@@ -62,6 +63,7 @@ PreparationRun run_preparation(const MotionSet& set, const Params& params, const
   run.locomotion.reserve(static_cast<size_t>(frames));
   run.contacts.reserve(static_cast<size_t>(frames));
   run.reports.reserve(static_cast<size_t>(frames));
+  run.foot_slide.reserve(static_cast<size_t>(frames));
   Pose loco = synth.make_pose();
   Pose out = synth.make_pose();
   SynthesisInput in;
@@ -78,8 +80,72 @@ PreparationRun run_preparation(const MotionSet& set, const Params& params, const
     run.locomotion.push_back(loco);
     run.contacts.push_back(in.contacts);
     run.reports.push_back(report);
+    float slide = 0.0f;
+    if (i > 0) {
+      const SynthesisReport& before = run.reports[static_cast<size_t>(i - 1)];
+      const FrameContacts& was = before.pinned;
+      const FrameContacts& now = report.pinned;
+      for (int side = 0; side < 2; ++side) {
+        if (was[side].heel && now[side].heel) slide = std::max(slide, glm::length(report.feet.heel[side] - before.feet.heel[side]));
+        if (was[side].toe && now[side].toe) slide = std::max(slide, glm::length(report.feet.toe[side] - before.feet.toe[side]));
+      }
+    }
+    run.foot_slide.push_back(slide);
   }
   return run;
+}
+
+int find_cyclic_clip(const MotionSet& set, Role role) {
+  for (size_t i = 0; i < set.clips.size(); ++i) {
+    if (set.clips[i].role == role && set.clips[i].cyclic) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+namespace {
+
+// Leg joint positions relative to the root, turned into the root's heading frame.
+void leg_points(const MotionSet& set, const std::vector<glm::vec3>& positions, const glm::quat& root, glm::vec3* out) {
+  const glm::quat unturn = glm::inverse(heading_rotation(heading_of(root)));
+  int k = 0;
+  for (const LegChain& leg : set.body.legs) {
+    for (int j : {leg.hip, leg.knee, leg.ankle, leg.toe}) {
+      out[k++] = j >= 0 ? unturn * (positions[static_cast<size_t>(j)] - positions[0]) : glm::vec3(0.0f);
+    }
+  }
+}
+
+}  // namespace
+
+int scan_reference_frame(const MotionSet& set, const MotionClip& target, const Params& params) {
+  if (target.target_frame < 0 || target.clip.frames.empty()) {
+    throw std::invalid_argument("clip \"" + target.clip.name + "\" has no target frame T_t");
+  }
+  const Skeleton& skeleton = *set.skeleton;
+  std::vector<glm::vec3> positions, centroids;
+  std::vector<glm::quat> rotations;
+  glm::vec3 legs0[8], legs[8];
+  forward_kinematics(skeleton, target.clip.frames[0], positions, &rotations);
+  leg_points(set, positions, target.clip.frames[0].rotations[0], legs0);
+  const FrameContacts contacts0 = target.contacts.empty() ? FrameContacts{} : target.contacts[0];
+  const int last = std::min(target.target_frame, target.clip.frame_count() - 1);
+  for (int f = last; f >= 0; --f) {
+    const Pose& pose = target.clip.frames[static_cast<size_t>(f)];
+    const FrameContacts& contacts = target.contacts[static_cast<size_t>(f)];
+    if (!(contacts == contacts0)) continue;  // condition 2
+    forward_kinematics(skeleton, pose, positions, &rotations);
+    leg_points(set, positions, pose.rotations[0], legs);
+    float squared = 0.0f;
+    for (int k = 0; k < 8; ++k) squared += glm::dot(legs[k] - legs0[k], legs[k] - legs0[k]);
+    if (squared > params.reference.legs_threshold) continue;  // condition 3
+    const SupportPolygon polygon =
+        support_polygon(foot_points(skeleton, set.body, positions, rotations), contacts, params.contacts);
+    segment_centroids(skeleton, set.mass, positions, rotations, centroids);
+    const glm::vec3 com = center_of_mass(set.mass, centroids);
+    if (polygon.empty() || !polygon.contains({com.x, com.z})) continue;  // condition 1
+    return f;
+  }
+  return 0;
 }
 
 }  // namespace prep

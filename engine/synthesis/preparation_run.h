@@ -40,10 +40,22 @@ struct PreparationRun {
   std::vector<Pose> locomotion;            // the locomotion input of each frame
   std::vector<FrameContacts> contacts;     // the locomotion's contacts (kept by the synthesized motion)
   std::vector<SynthesisReport> reports;
+  std::vector<float> foot_slide;           // per frame: the largest move (m) of a heel or toe point the
+                                           // foot stood on (pinned) in this frame and the previous one
 };
 
 // Runs seconds * fps + 1 frames. Throws std::invalid_argument for a clip index out of range or a reference
 // pose on another skeleton.
 PreparationRun run_preparation(const MotionSet& set, const Params& params, const PreparationRunOptions& options);
+
+// The first cyclic clip of the set with role `role` (-1 if none).
+int find_cyclic_clip(const MotionSet& set, Role role);
+
+// The reference posture T_p of a target clip by the scan of Sec. 4.2: from T_t back toward T_0, the first
+// frame whose COM lies inside its support polygon, whose contact pattern equals T_0's and whose leg joints
+// (relative to the root, in its heading frame) are within reference.legs_threshold (sum of squared
+// differences) of T_0's; T_0 if none qualifies. Returns the frame index. (The motion graph computes the
+// same for its target nodes; this is for tools that run synthesis on a motion set without a graph.)
+int scan_reference_frame(const MotionSet& set, const MotionClip& target, const Params& params);
 
 }  // namespace prep

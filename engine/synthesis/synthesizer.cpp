@@ -47,6 +47,8 @@ void Synthesizer::stage_trajectory(const SynthesisInput& in, SynthesisState& sta
                                    Pose& out) const {
   const glm::vec3 loco_root = in.locomotion->root_position;
   glm::vec3 displacement(0.0f);
+  s.locomotion_jump = glm::vec3(0.0f);
+  if (in.has_displacement && state.started) s.locomotion_jump = loco_root - in.displacement - state.previous_locomotion_root;
   if (in.has_displacement) displacement = in.displacement;
   else if (state.started) displacement = loco_root - state.previous_locomotion_root;
   if (!state.started) state.root_xz = glm::vec2(loco_root.x, loco_root.z) - glm::vec2(displacement.x, displacement.z);
@@ -61,9 +63,23 @@ void Synthesizer::stage_trajectory(const SynthesisInput& in, SynthesisState& sta
 }
 
 void Synthesizer::stage_ik(const SynthesisInput& in, SynthesisState& state, SynthesisScratch& s, Pose& out) const {
+  // The locomotion's own heel and toe speeds decide which flagged points the foot stands on.
+  forward_kinematics(*skeleton_, *in.locomotion, s.positions, &s.rotations);
+  const FootPoints loco_feet = foot_points(*skeleton_, body_, s.positions, s.rotations);
+  std::array<float, 2> heel_speed{0.0f, 0.0f}, toe_speed{0.0f, 0.0f};
+  if (state.history > 0 && in.dt > 0.0f) {
+    const glm::vec3 shift = s.locomotion_jump;  // a re-aligned stream moves every point alike
+    for (size_t side = 0; side < 2; ++side) {
+      heel_speed[side] = glm::length(loco_feet.heel[side] - shift - state.previous_locomotion_feet.heel[side]) / in.dt;
+      toe_speed[side] = glm::length(loco_feet.toe[side] - shift - state.previous_locomotion_feet.toe[side]) / in.dt;
+    }
+  }
+  state.previous_locomotion_feet = loco_feet;
+  s.pinned = select_pinned_points(in.contacts, heel_speed, toe_speed, params_.ik);
+
   forward_kinematics(*skeleton_, out, s.positions, &s.rotations);
   if (!params_.ik.enabled) return;
-  apply_foot_ik(*skeleton_, body_, params_.ik, in.contacts, in.dt, out, s.positions, s.rotations, state.feet);
+  apply_foot_ik(*skeleton_, body_, params_.ik, s.pinned, in.dt, out, s.positions, s.rotations, state.feet, state.root_drop);
   forward_kinematics(*skeleton_, out, s.positions, &s.rotations);
 }
 
@@ -102,6 +118,7 @@ void Synthesizer::stage_balance(const SynthesisInput& in, SynthesisState& state,
     report->balanced = result.optimized;
     report->balance_steps = result.steps;
     report->feet = feet;
+    report->pinned = s.pinned;
     if (has_support) {
       const glm::vec3 before = model_center_of_mass(balance_model_, s.style.data());
       const glm::vec3 after = model_center_of_mass(balance_model_, final_centroids);

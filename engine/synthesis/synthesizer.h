@@ -37,6 +37,8 @@ struct SynthesisState {
   glm::vec3 previous_locomotion_root{0.0f};  // to take the locomotion's per-frame displacement (Eq. 3-4)
   glm::vec2 root_xz{0.0f};                   // the synthesized root's accumulated floor position
   FootPlants feet;                           // planted feet (foot IK)
+  float root_drop = 0.0f;                    // pelvis lowered by the foot IK to keep planted feet in reach (m)
+  FootPoints previous_locomotion_feet{};     // the locomotion's heel and toe points at the previous frame
   int history = 0;                           // optimized frames remembered (0-2), for Eq. 8-9
   std::array<glm::vec3, kMaxBodyParts> previous{};         // body-part centroids at t-1
   std::array<glm::vec3, kMaxBodyParts> before_previous{};  // ... at t-2
@@ -66,6 +68,7 @@ struct SynthesisReport {
   bool com_inside_before = false;     // COM inside the support polygon before / after optimization
   bool com_inside_after = false;
   FootPoints feet{};                  // heel and toe tips of the output pose (world)
+  FrameContacts pinned{};             // the contact points the foot IK held in place (select_pinned_points)
 };
 
 struct SynthesisScratch {
@@ -73,6 +76,8 @@ struct SynthesisScratch {
   std::vector<glm::vec3> positions;
   std::vector<glm::quat> rotations;
   std::vector<glm::vec3> style;  // centroids of the posture before optimization
+  FrameContacts pinned{};
+  glm::vec3 locomotion_jump{0.0f};  // how far the locomotion stream was moved this frame beyond its displacement
   BalanceScratch balance;
   SupportPolygon support;
 };
