@@ -24,6 +24,7 @@
   X(PFNGLACTIVETEXTUREPROC, glActiveTexture)                              \
   X(PFNGLATTACHSHADERPROC, glAttachShader)                                \
   X(PFNGLBINDBUFFERPROC, glBindBuffer)                                    \
+  X(PFNGLBINDBUFFERBASEPROC, glBindBufferBase)                            \
   X(PFNGLBINDFRAMEBUFFERPROC, glBindFramebuffer)                          \
   X(PFNGLBINDRENDERBUFFERPROC, glBindRenderbuffer)                        \
   X(PFNGLBINDSAMPLERPROC, glBindSampler)                                  \
@@ -84,6 +85,7 @@
   X(PFNGLGETSTRINGPROC, glGetString)                                      \
   X(PFNGLGETSTRINGIPROC, glGetStringi)                                    \
   X(PFNGLGETUNIFORMLOCATIONPROC, glGetUniformLocation)                    \
+  X(PFNGLGETUNIFORMBLOCKINDEXPROC, glGetUniformBlockIndex)                \
   X(PFNGLISENABLEDPROC, glIsEnabled)                                      \
   X(PFNGLLINKPROGRAMPROC, glLinkProgram)                                  \
   X(PFNGLPIXELSTOREIPROC, glPixelStorei)                                  \
@@ -104,8 +106,10 @@
   X(PFNGLUNIFORM3FVPROC, glUniform3fv)                                    \
   X(PFNGLUNIFORM4FPROC, glUniform4f)                                      \
   X(PFNGLUNIFORMMATRIX4FVPROC, glUniformMatrix4fv)                        \
+  X(PFNGLUNIFORMBLOCKBINDINGPROC, glUniformBlockBinding)                  \
   X(PFNGLUSEPROGRAMPROC, glUseProgram)                                    \
   X(PFNGLVERTEXATTRIBDIVISORPROC, glVertexAttribDivisor)                  \
+  X(PFNGLVERTEXATTRIBIPOINTERPROC, glVertexAttribIPointer)                \
   X(PFNGLVERTEXATTRIBPOINTERPROC, glVertexAttribPointer)                  \
   X(PFNGLVIEWPORTPROC, glViewport)
 

@@ -177,9 +177,10 @@ void append_object_primitives(const SceneObject& object, ScenePrimitives& out) {
   }
 }
 
-ScenePrimitives build_primitives(const Scene& scene) {
+ScenePrimitives build_primitives(const Scene& scene, const std::vector<bool>& skinned) {
   ScenePrimitives prims;
-  for (const SceneCharacter& c : scene.characters) append_character_capsules(c, prims.capsules);
+  for (size_t i = 0; i < scene.characters.size(); ++i)
+    if (i >= skinned.size() || !skinned[i]) append_character_capsules(scene.characters[i], prims.capsules);
   for (const SceneObject& o : scene.objects) append_object_primitives(o, prims);
   for (size_t i = 0; i < scene.goal.size(); ++i) {
     const glm::vec3 g(scene.goal[i].x, 0.0f, scene.goal[i].z);
@@ -209,6 +210,15 @@ Renderer::Renderer(const RenderSettings& settings) : settings_(settings) {
   box_depth_program_ = build_program("box.vert", "depth.frag");
   ground_program_ = build_program("ground.vert", "ground.frag");
   marker_program_ = build_program("marker.vert", "marker.frag");
+  skinned_program_ = build_program("skinned.vert", "lit.frag");
+  skinned_depth_program_ = build_program("skinned.vert", "depth.frag");
+  // The skinning matrices of the character being drawn: one uniform block at binding point 0.
+  for (GLuint program : {skinned_program_, skinned_depth_program_})
+    glUniformBlockBinding(program, glGetUniformBlockIndex(program, "Skin"), 0);
+  glGenBuffers(1, &skin_block_);
+  glBindBuffer(GL_UNIFORM_BUFFER, skin_block_);
+  glBufferData(GL_UNIFORM_BUFFER, kMaxSkinJoints * sizeof(glm::mat4), nullptr, GL_STREAM_DRAW);
+  glBindBuffer(GL_UNIFORM_BUFFER, 0);
 
   // Capsules: per-vertex offset + end flag, per-instance a/radius, b/glow, colour.
   {
@@ -304,10 +314,12 @@ Renderer::Renderer(const RenderSettings& settings) : settings_(settings) {
 }
 
 Renderer::~Renderer() {
-  const GLuint programs[] = {capsule_program_, box_program_, ground_program_, marker_program_, capsule_depth_program_, box_depth_program_};
+  bodies_.clear();  // their GL objects go while the context is current
+  const GLuint programs[] = {capsule_program_, box_program_,          ground_program_,       marker_program_,
+                             capsule_depth_program_, box_depth_program_, skinned_program_, skinned_depth_program_};
   for (GLuint p : programs) glDeleteProgram(p);
   const GLuint buffers[] = {capsule_vbo_, capsule_ibo_, capsule_instances_, box_vbo_, box_ibo_, box_instances_,
-                            ground_vbo_, marker_vbo_, marker_instances_};
+                            ground_vbo_, marker_vbo_, marker_instances_, skin_block_};
   glDeleteBuffers(static_cast<GLsizei>(std::size(buffers)), buffers);
   const GLuint arrays[] = {capsule_vao_, box_vao_, ground_vao_, marker_vao_};
   glDeleteVertexArrays(static_cast<GLsizei>(std::size(arrays)), arrays);
@@ -315,8 +327,48 @@ Renderer::~Renderer() {
   if (shadow_texture_) glDeleteTextures(1, &shadow_texture_);
 }
 
+const SkinnedBody* Renderer::body_for(const std::shared_ptr<const Skeleton>& skeleton) {
+  if (!skeleton) return nullptr;
+  for (const BodyEntry& e : bodies_)
+    if (e.skeleton == skeleton) return e.body.get();
+  BodyEntry entry;
+  entry.skeleton = skeleton;
+  if (auto mesh = body_for_skeleton(*skeleton, settings_.character_path)) entry.body = std::make_unique<SkinnedBody>(std::move(mesh));
+  bodies_.push_back(std::move(entry));
+  return bodies_.back().body.get();
+}
+
+void Renderer::set_body(std::shared_ptr<const Skeleton> skeleton, std::shared_ptr<const SkinnedMesh> mesh) {
+  if (!skeleton || !mesh) throw std::invalid_argument("Renderer::set_body: no skeleton or no mesh");
+  mesh->validate(*skeleton);
+  if (skeleton->size() > kMaxSkinJoints) throw std::invalid_argument("Renderer::set_body: more joints than a skinned body may have");
+  for (BodyEntry& e : bodies_)
+    if (e.skeleton == skeleton) {
+      e.body = std::make_unique<SkinnedBody>(std::move(mesh));
+      return;
+    }
+  bodies_.push_back({std::move(skeleton), std::make_unique<SkinnedBody>(std::move(mesh))});
+}
+
 void Renderer::prepare(const Scene& scene) {
-  primitives_ = build_primitives(scene);
+  std::vector<bool> skinned(scene.characters.size(), false);
+  size_t draws = 0;
+  if (settings_.skinned_bodies) {
+    for (size_t i = 0; i < scene.characters.size(); ++i) {
+      const SceneCharacter& c = scene.characters[i];
+      const SkinnedBody* body = body_for(c.skeleton);
+      if (!body || c.joint_positions.size() != static_cast<size_t>(c.skeleton->size())) continue;
+      skinned[i] = true;
+      if (skinned_draws_.size() <= draws) skinned_draws_.emplace_back();
+      SkinnedDraw& d = skinned_draws_[draws++];
+      d.body = body;
+      skinning_matrices(body->mesh(), c.joint_positions, c.joint_rotations, d.skinning);
+      d.colour = c.colour;
+      d.glow = c.is_source ? 1.0f : 0.0f;
+    }
+  }
+  skinned_draws_.resize(draws);
+  primitives_ = build_primitives(scene, skinned);
   focus_ = scene.focus;
   upload(capsule_instances_, primitives_.capsules);
   upload(box_instances_, primitives_.boxes);
@@ -349,6 +401,21 @@ void Renderer::draw_boxes(GLuint program, const glm::mat4& view_proj) {
   triangles_ += box_index_count_ / 3 * static_cast<int>(primitives_.boxes.size());
 }
 
+void Renderer::draw_skinned_bodies(GLuint program, const glm::mat4& view_proj) {
+  if (skinned_draws_.empty()) return;
+  glUseProgram(program);
+  glUniformMatrix4fv(glGetUniformLocation(program, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
+  const GLint colour = glGetUniformLocation(program, "u_colour"), glow = glGetUniformLocation(program, "u_glow");
+  glBindBufferBase(GL_UNIFORM_BUFFER, 0, skin_block_);
+  for (const SkinnedDraw& d : skinned_draws_) {
+    glBufferSubData(GL_UNIFORM_BUFFER, 0, static_cast<GLsizeiptr>(d.skinning.size() * sizeof(glm::mat4)), d.skinning.data());
+    if (colour >= 0) glUniform3fv(colour, 1, glm::value_ptr(d.colour));
+    if (glow >= 0) glUniform1f(glow, d.glow);
+    d.body->draw();
+    triangles_ += d.body->triangle_count();
+  }
+}
+
 void Renderer::shadow_pass() {
   triangles_ = 0;
   if (!shadow_fbo_) return;
@@ -363,6 +430,7 @@ void Renderer::shadow_pass() {
   glEnable(GL_CULL_FACE);
   glCullFace(GL_FRONT);  // back faces into the map: less self-shadowing on lit sides
   draw_capsule_bodies(capsule_depth_program_, light_view_proj_);
+  draw_skinned_bodies(skinned_depth_program_, light_view_proj_);
   draw_boxes(box_depth_program_, light_view_proj_);
   glCullFace(GL_BACK);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -404,6 +472,8 @@ void Renderer::main_pass(const Camera& camera, int x, int y, int width, int heig
   glFrontFace(GL_CCW);
   set_lighting_uniforms(capsule_program_, eye);
   draw_capsule_bodies(capsule_program_, view_proj);
+  set_lighting_uniforms(skinned_program_, eye);
+  draw_skinned_bodies(skinned_program_, view_proj);
   set_lighting_uniforms(box_program_, eye);
   draw_boxes(box_program_, view_proj);
 

@@ -1,14 +1,18 @@
-// The OpenGL 3.3 core renderer: lit floor with a grid, a shadow map, characters as shaded capsules per
-// bone, obstacles as boxes, balls as spheres, the goal marker and the highlighted source of influence.
+// The OpenGL 3.3 core renderer: lit floor with a grid, a shadow map, characters as skinned bodies (the glTF
+// character, skinned_body.h; shaded capsules per bone for a skeleton without a body), obstacles as boxes,
+// balls as spheres, the goal marker and the highlighted source of influence.
 // It draws a Scene (scene.h) and reads nothing else. Requires a current context with gl::load() done.
 #pragma once
 
 #include <glm/mat4x4.hpp>
+#include <memory>
+#include <string>
 #include <vector>
 
 #include "app/render/camera.h"
 #include "app/render/gl_api.h"
 #include "app/render/scene.h"
+#include "app/render/skinned_body.h"
 
 namespace prep::render {
 
@@ -18,6 +22,10 @@ struct RenderSettings {
   int shadow_map_size = 1024;
   float shadow_extent = 7.0f;  // m: half-size of the square around Scene::focus that casts shadows
   glm::vec3 light_dir{0.45f, 1.0f, 0.35f};  // toward the light (normalized by the renderer)
+  // Characters are drawn with their skeleton's skinned body (body_for_skeleton: the glTF character file
+  // for the skeleton it was made for, our built body for other humanoids); false: capsules per bone.
+  bool skinned_bodies = true;
+  std::string character_path = default_character_path();  // glTF character tried first for every skeleton
 };
 
 // Per-instance data (matches the shaders' attributes).
@@ -41,7 +49,8 @@ struct ScenePrimitives {
   std::vector<BoxInstance> boxes;
   std::vector<MarkerInstance> markers;
 };
-ScenePrimitives build_primitives(const Scene& scene);
+// Characters whose entry in `skinned` is true are drawn as skinned bodies and get no capsules.
+ScenePrimitives build_primitives(const Scene& scene, const std::vector<bool>& skinned = {});
 // The capsules of one character's body: one per bone (parent joint -> joint, and joint -> End Site), with
 // radii by body part from the joint names; the head as a near-sphere above the head joint.
 void append_character_capsules(const SceneCharacter& character, std::vector<CapsuleInstance>& out);
@@ -70,20 +79,39 @@ class Renderer {
   }
 
   int triangles_last_frame() const { return triangles_; }
+  // The skinned body the renderer draws for this skeleton (made on first use), or nullptr: capsules.
+  const SkinnedBody* body_for(const std::shared_ptr<const Skeleton>& skeleton);
+  // Draws this skeleton with the given mesh (bound to it, e.g. a user's glTF character) from now on.
+  void set_body(std::shared_ptr<const Skeleton> skeleton, std::shared_ptr<const SkinnedMesh> mesh);
   const RenderSettings& settings() const { return settings_; }
 
  private:
   void set_lighting_uniforms(GLuint program, const glm::vec3& eye);
   void draw_capsule_bodies(GLuint program, const glm::mat4& view_proj);
   void draw_boxes(GLuint program, const glm::mat4& view_proj);
+  void draw_skinned_bodies(GLuint program, const glm::mat4& view_proj);
+
+  struct BodyEntry {
+    std::shared_ptr<const Skeleton> skeleton;  // kept alive: the key must not be reused by another skeleton
+    std::unique_ptr<SkinnedBody> body;         // nullptr: this skeleton has no body, draw capsules
+  };
+  struct SkinnedDraw {
+    const SkinnedBody* body = nullptr;
+    std::vector<glm::mat4> skinning;  // S[j] = W[j] * inverse_bind[j] of this frame's pose
+    glm::vec3 colour{0.0f};
+    float glow = 0.0f;
+  };
 
   RenderSettings settings_;
   ScenePrimitives primitives_;
+  std::vector<BodyEntry> bodies_;
+  std::vector<SkinnedDraw> skinned_draws_;
   glm::vec3 focus_{0.0f};
   glm::mat4 light_view_proj_{1.0f};
 
   GLuint capsule_program_ = 0, box_program_ = 0, ground_program_ = 0, marker_program_ = 0;
   GLuint capsule_depth_program_ = 0, box_depth_program_ = 0;
+  GLuint skinned_program_ = 0, skinned_depth_program_ = 0, skin_block_ = 0;
   GLuint capsule_vao_ = 0, capsule_vbo_ = 0, capsule_ibo_ = 0, capsule_instances_ = 0;
   GLuint box_vao_ = 0, box_vbo_ = 0, box_ibo_ = 0, box_instances_ = 0;
   GLuint ground_vao_ = 0, ground_vbo_ = 0;
