@@ -57,7 +57,7 @@ TEST_CASE("a step moves the character by the action's effect and pays Eq. 17") {
   CHECK(left.theta_g < kPi / 2 - 0.3f);
 }
 
-TEST_CASE("reaching the source forces alpha to 1; reaching the goal ends the episode") {
+TEST_CASE("reaching the source forces alpha to 1 and reaching the goal ends the episode") {
   const Params params;
   const auto world = test::hand_made_world(params);
   const Environment env = test::make_environment(params, world.table);

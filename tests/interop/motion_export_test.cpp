@@ -37,7 +37,7 @@ TEST_CASE("write_clip chooses the format by extension, and each file reads back 
   CHECK_THROWS_AS(write_clip(test::scratch("turn.fbx"), clip), std::invalid_argument);
 }
 
-TEST_CASE("Several characters with our body go into one valid glTF; into BVH one file each") {
+TEST_CASE("Several characters with our body go into one valid glTF, and into BVH one file each") {
   const Clip walk = test::cmu31_clip("walk_69_01.bvh");
   Clip second = walk;
   second.frames.resize(40);

@@ -102,7 +102,7 @@ TEST_CASE("body map: daz43 (no toe joint: the toe tip is the foot's End Site)") 
   CHECK(sk.joints[static_cast<size_t>(b.legs[kLeft].hip)].offset.x >= 0.0f);
 }
 
-TEST_CASE("body map: cmu31 (ankle, toe, wrist and a palm bone; lowerback is not a left joint)") {
+TEST_CASE("body map: cmu31 (ankle, toe, wrist and a palm bone - lowerback is not a left joint)") {
   const Clip clip = load("cmu31", "walk_69_01.bvh");
   const Skeleton& sk = *clip.skeleton;
   const BodyMap b = BodyMap::detect(sk);

@@ -51,7 +51,7 @@ TEST_CASE("the built-in skeleton's body is assets/character.glb, read through ti
   CHECK(mesh->positions.front() == from_file.positions.front());
 }
 
-TEST_CASE("other humanoids get a body built for them; a broken character file falls back; non-humanoids get none") {
+TEST_CASE("other humanoids get a body built for them, a broken character file falls back, and non-humanoids get none") {
   // The daz43 CMU skeleton (43 joints): the character file is for another skeleton, so ours is built.
   const MotionSet daz = load_motion_set(test::repo() + "/assets/manifests/daz43.json", Params{});
   std::string why;

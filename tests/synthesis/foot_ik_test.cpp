@@ -67,7 +67,7 @@ TEST_CASE("two-bone solve: exact within reach, softened and never straight beyon
   }
 }
 
-TEST_CASE("a foot in contact stays planted while the body moves; it is released after the contact") {
+TEST_CASE("a foot in contact stays planted while the body moves and is released after the contact") {
   const auto skeleton = test::make_test_skeleton();
   const BodyMap body = BodyMap::detect(*skeleton);
   const MassModel mass = MassModel::build(*skeleton, body);

@@ -79,7 +79,7 @@ TEST_CASE("a minimal scenario takes the defaults") {
   CHECK(s.goal[0].y == 4.0f);
 }
 
-TEST_CASE("headings are degrees in the file and radians in the engine; waypoints keep their order") {
+TEST_CASE("headings are degrees in the file and radians in the engine, and waypoints keep their order") {
   const Scenario s = parse_scenario(R"({
     "characters": [{"position": [0, 0], "heading": 90, "control": "user"},
                    {"position": [0, 5], "heading": 180, "control": "opponent", "action": "punch_left"}],
