@@ -4,7 +4,6 @@
 // motion set; each becomes one character of the file (a BVH holds one skeleton: further characters go to
 // <stem>_<i>.bvh).
 #include <filesystem>
-#include <cmath>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -18,6 +17,7 @@
 #include "engine/motion/body_map.h"
 #include "engine/util/error.h"
 #include "engine/world/policy_cache.h"
+#include "engine/world/recording.h"
 #include "engine/world/scenario.h"
 #include "engine/world/world.h"
 
@@ -59,18 +59,8 @@ prep::cli::RegisterCommand export_command(
           const std::string cache = o->cache.empty() ? prep::default_policy_cache_dir() : o->cache;
           const auto assets = prep::prepare_world_assets(scenario, params, cache);
           prep::World world(scenario, assets);
-          const prep::WorldScene scene = world.scene();
-          std::vector<prep::Clip> characters(world.characters().size());
-          for (size_t i = 0; i < characters.size(); ++i) {
-            characters[i].name = "character" + std::to_string(i);
-            characters[i].skeleton = scene.characters[i].skeleton;
-            characters[i].fps = 1.0f / params.runtime.fixed_dt;
-          }
-          const int ticks = static_cast<int>(std::lround(o->seconds / params.runtime.fixed_dt));
-          for (int t = 0; t < ticks; ++t) {
-            world.step();
-            for (size_t i = 0; i < characters.size(); ++i) characters[i].frames.push_back(world.characters()[i].pose);
-          }
+          const std::vector<prep::Clip> characters = prep::record_world(world, o->seconds);
+          const int ticks = characters.front().frame_count();
           prep::SkinnedMesh mesh;
           if (o->with_mesh) {
             const auto& skeleton = *characters.front().skeleton;
