@@ -124,12 +124,19 @@ std::shared_ptr<const Policy> load_or_train_policy(const MotionSet& set, const M
   return p;
 }
 
+namespace {
+struct Cancelled {};  // thrown out of training by a cancelled PolicyJob (not a std::exception: never an error)
+}  // namespace
+
 PolicyJob::PolicyJob(const MotionSet& set, const MotionGraph& graph, const Params& params, std::string cache_dir)
     : max_steps_(std::max<std::int64_t>(1, params.sarsa.max_steps)), status_("loading") {
   thread_ = std::thread([this, &set, &graph, params, cache_dir = std::move(cache_dir)] {
     try {
       TrainingOptions options;
       options.progress = [this](const TrainingProgress& p) {
+        // Training has no stop flag of its own: leaving from the progress callback, which runs on the
+        // training thread between rounds, unwinds train_sarsa cleanly (its worker pool joins).
+        if (cancelled_.load()) throw Cancelled{};
         steps_.store(p.steps);
         std::lock_guard<std::mutex> lock(mutex_);
         status_ = "training: " + std::to_string(p.steps) + " steps";
@@ -140,6 +147,9 @@ PolicyJob::PolicyJob(const MotionSet& set, const MotionGraph& graph, const Param
       policy_ = std::move(p);
       trained_.store(trained);
       status_ = trained ? "trained" : "cached";
+    } catch (const Cancelled&) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      status_ = "cancelled";
     } catch (const std::exception& e) {
       std::lock_guard<std::mutex> lock(mutex_);
       error_ = std::current_exception();

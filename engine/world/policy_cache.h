@@ -57,9 +57,15 @@ class PolicyJob {
   // The policy once done; rethrows the error if it failed; nullptr while running.
   std::shared_ptr<const Policy> result() const;
   bool trained() const { return trained_.load(); }
+  // Asks the job to stop at the end of the current training round (within about a second): it then
+  // finishes with status "cancelled" and no policy (result() is nullptr), and nothing is cached. A job
+  // that has already finished is not affected. The destructor still waits for the thread.
+  void cancel() { cancelled_.store(true); }
+  bool cancelled() const { return cancelled_.load(); }
 
  private:
   std::atomic<bool> done_{false};
+  std::atomic<bool> cancelled_{false};
   std::atomic<bool> trained_{false};
   std::atomic<std::int64_t> steps_{0};
   std::int64_t max_steps_ = 1;

@@ -1,6 +1,7 @@
 #include "engine/world/world.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -30,6 +31,11 @@ glm::vec2 left_of(float heading) { return {std::cos(heading), -std::sin(heading)
 glm::vec2 floor_xz(const glm::vec3& p) { return {p.x, p.z}; }
 
 bool is_across(ObjectType t) { return t == ObjectType::Bar || t == ObjectType::Beam || t == ObjectType::Hurdle; }
+
+using StageClock = std::chrono::steady_clock;
+double ms_between(StageClock::time_point a, StageClock::time_point b) {
+  return std::chrono::duration<double, std::milli>(b - a).count();
+}
 
 float smoothstep(float x) {
   x = std::clamp(x, 0.0f, 1.0f);
@@ -238,12 +244,18 @@ void World::set_goal(glm::vec2 goal) {
   u.reached_time = -1.0f;
 }
 
+void World::set_source(int object) {
+  picked_source_ = object >= 0 && object < static_cast<int>(objects_.size()) ? object : -1;
+}
+
 void World::run(float seconds) {
   const int n = static_cast<int>(std::lround(seconds / params_.runtime.fixed_dt));
   for (int k = 0; k < n; ++k) step();
 }
 
 void World::step() {
+  const auto step_start = StageClock::now();
+  stage_times_ = StageTimes{};
   const float dt = params_.runtime.fixed_dt;
   time_ += dt;
   ++ticks_;
@@ -259,6 +271,7 @@ void World::step() {
   }
   alpha_history_.push_back({time_, characters_[static_cast<size_t>(user_)].alpha});
   if (static_cast<int>(alpha_history_.size()) > kAlphaHistory) alpha_history_.erase(alpha_history_.begin());
+  stage_times_.total_ms = ms_between(step_start, StageClock::now());
 }
 
 // The launch point for an action at an object: where the character stands when the action's clip, entered
@@ -298,6 +311,28 @@ void World::choose_source(int index) {
     c.source_object_position = u.position;
     c.source = launch_point(index, u.position, 0.0f, false, c.met_with);
     return;
+  }
+  if (picked_source_ >= 0) {  // picked by hand (set_source): kept while it can still be acted on
+    const WorldObject& o = objects_[static_cast<size_t>(picked_source_)];
+    if (o.spec.type == ObjectType::Opponent && o.character >= 0) {
+      const WorldCharacter& opponent = characters_[static_cast<size_t>(o.character)];
+      if (!opponent.defeated) {
+        c.has_source = true;
+        c.source_character = o.character;
+        c.prepared_for = opponent.met_with;
+        c.source_object_position = opponent.position;
+        c.source = launch_point(index, opponent.position, 0.0f, false, c.prepared_for);
+        return;
+      }
+    } else if (!o.used && assets_->target(o.spec.action).clip >= 0) {
+      c.has_source = true;
+      c.source_object = picked_source_;
+      c.prepared_for = o.spec.action;
+      c.source_object_position = floor_xz(o.position);
+      c.source = launch_point(index, c.source_object_position, o.spec.heading, is_across(o.spec.type), c.prepared_for);
+      return;
+    }
+    picked_source_ = -1;  // used or defeated: the automatic choice resumes
   }
   float best = std::numeric_limits<float>::infinity();
   for (int k = 0; k < static_cast<int>(characters_.size()); ++k) {
@@ -492,10 +527,14 @@ void World::step_character(int index) {
   WorldCharacter& c = characters_[static_cast<size_t>(index)];
   Runtime& rt = *runtime_[static_cast<size_t>(index)];
   const float dt = params_.runtime.fixed_dt;
+  const auto control_start = StageClock::now();
 
   choose_source(index);
   if (!c.in_target) control(index);
-  const float alpha = rt.controller->tick();  // Gaussian-smoothed (controller.h)
+  float alpha = rt.controller->tick();  // Gaussian-smoothed (controller.h)
+  if (!preparation_) alpha = 0.0f;      // the naive baseline (set_preparation)
+  const auto motion_start = StageClock::now();
+  stage_times_.control_ms += ms_between(control_start, motion_start);
   rt.stream.advance(dt);
 
   if (c.in_target) {
@@ -526,6 +565,8 @@ void World::step_character(int index) {
     }
   }
 
+  const auto synthesis_start = StageClock::now();
+  stage_times_.motion_ms += ms_between(motion_start, synthesis_start);
   Pose out = synthesizer_->make_pose();
   c.alpha = alpha;
   if (c.in_target) {
@@ -566,9 +607,12 @@ void World::step_character(int index) {
   c.pose = out;
   c.position = floor_xz(out.root_position);
   c.heading = heading_of(rt.stream.pose().rotations[0]);
+  const auto balance_start = StageClock::now();
+  stage_times_.synthesis_ms += ms_between(synthesis_start, balance_start);
   update_balance(index);
   update_goal(index);
   try_auto_launch(index);
+  stage_times_.balance_ms += ms_between(balance_start, StageClock::now());
 }
 
 // ---------------------------------------------------------------------------------------------------------

@@ -194,6 +194,15 @@ class World {
   void set_goal(glm::vec2 goal);
   void set_auto(bool on) { auto_launch_ = on; }
   bool auto_launch() const { return auto_launch_; }
+  // Preparation off = the naive baseline of issue 9 (motion-graph concatenation): the controller still
+  // picks motions, but synthesis gets alpha 0 and the characters' reported alpha is 0 until a launch.
+  void set_preparation(bool on) { preparation_ = on; }
+  bool preparation() const { return preparation_; }
+  // The user's source of influence picked by hand (the demo's mouse): objects()[object] (an opponent
+  // object picks its character) is the source while it can still be acted on (unused, not defeated), then
+  // the automatic choice resumes. -1 returns to the automatic choice at once. Out of range: ignored.
+  void set_source(int object);
+  int picked_source() const { return picked_source_; }
   // Changes Params live (the demo's panels): the synthesizer is rebuilt; the policy stays (retrain it
   // through policy_cache.h when policy_params_hash changes, then set_policy).
   void set_params(const Params& params);
@@ -208,6 +217,15 @@ class World {
   int user() const { return user_; }
   bool goal_reached() const { return characters_[static_cast<size_t>(user_)].reached_goal; }
   const std::vector<glm::vec2>& alpha_history() const { return alpha_history_; }
+  // Wall-clock milliseconds of the last step(), by stage, summed over the characters (the demo's timings).
+  struct StageTimes {
+    double control_ms = 0;    // source of influence, controller decision, Gaussian alpha
+    double motion_ms = 0;     // the motion stream (graph player), target-motion bookkeeping
+    double synthesis_ms = 0;  // Synthesizer::step (blend, trajectory, foot IK, balance) and cross-fades
+    double balance_ms = 0;    // COM and support polygon of the pose, goals, auto launch
+    double total_ms = 0;      // the whole step
+  };
+  const StageTimes& stage_times() const { return stage_times_; }
 
   WorldScene scene() const;
 
@@ -228,6 +246,7 @@ class World {
   std::shared_ptr<const Synthesizer> synthesizer_;
   std::shared_ptr<const Policy> policy_;
   bool auto_launch_ = false;
+  bool preparation_ = true;
   float time_ = 0.0f;
   int ticks_ = 0;
   int user_ = 0;
@@ -237,6 +256,8 @@ class World {
   std::vector<std::unique_ptr<Runtime>> runtime_;
   std::vector<LaunchRecord> launches_;
   std::vector<glm::vec2> alpha_history_;
+  int picked_source_ = -1;
+  StageTimes stage_times_;
 };
 
 // A headless run: the scenario for `seconds`, launches and goal (what `prep run` and `prep-demo --json` print).
