@@ -145,6 +145,10 @@ std::vector<std::uint8_t> render_line_plot(const std::vector<PlotSeries>& series
   const double y_pad = 0.05 * (y1 - y0);
   y1 += y_pad;
   if (y0 != 0) y0 -= y_pad;
+  if (std::isfinite(o.y_min) && std::isfinite(o.y_max) && o.y_max > o.y_min) {
+    y0 = o.y_min;
+    y1 = o.y_max;
+  }
 
   Canvas c(o.width, o.height);
   const int left = 80, right = o.width - 25, top = 40, bottom = o.height - 55;
@@ -169,10 +173,45 @@ std::vector<std::uint8_t> render_line_plot(const std::vector<PlotSeries>& series
   c.line(left, top, left, bottom, ink);
   c.line(left, bottom, right, bottom, ink);
 
+  // Data outside a fixed y range is clamped to the frame rather than drawn over the labels.
+  auto pyc = [&](double y) { return std::clamp(py(y), static_cast<double>(top), static_cast<double>(bottom)); };
   for (const PlotSeries& s : series)
     for (size_t i = 1; i < s.x.size() && i < s.y.size(); ++i)
       if (std::isfinite(s.x[i - 1] + s.y[i - 1] + s.x[i] + s.y[i]))
-        c.line(px(s.x[i - 1]), py(s.y[i - 1]), px(s.x[i]), py(s.y[i]), s.rgb, 2);
+        c.line(px(s.x[i - 1]), pyc(s.y[i - 1]), px(s.x[i]), pyc(s.y[i]), s.rgb, 2);
+  // Marks: a dot on the series' line at each marked x (the line's y there, linearly interpolated).
+  for (const PlotSeries& s : series)
+    for (double m : s.marks) {
+      const size_t n = std::min(s.x.size(), s.y.size());
+      if (n == 0 || !std::isfinite(m)) continue;
+      const size_t k = static_cast<size_t>(std::lower_bound(s.x.begin(), s.x.begin() + static_cast<std::ptrdiff_t>(n), m) - s.x.begin());
+      double y = s.y[std::min(k, n - 1)];
+      if (k > 0 && k < n && s.x[k] > s.x[k - 1]) y = s.y[k - 1] + (s.y[k] - s.y[k - 1]) * (m - s.x[k - 1]) / (s.x[k] - s.x[k - 1]);
+      const double cx = px(m), cy = pyc(y);
+      for (int dy = -4; dy <= 4; ++dy)
+        for (int dx = -4; dx <= 4; ++dx)
+          if (dx * dx + dy * dy <= 16) c.set(static_cast<int>(std::lround(cx)) + dx, static_cast<int>(std::lround(cy)) + dy, dx * dx + dy * dy >= 9 ? ink : s.rgb);
+    }
+  // Legend: one row per labelled series, a colour swatch and the label, in a framed box at the top right.
+  int labelled = 0, widest = 0;
+  for (const PlotSeries& s : series)
+    if (!s.label.empty()) ++labelled, widest = std::max(widest, text_width(s.label));
+  if (labelled > 0) {
+    const int box_w = widest + 40, box_h = 14 * labelled + 8, bx = right - box_w - 8, by = top + 8;
+    for (int y = by; y < by + box_h; ++y)
+      for (int x = bx; x < bx + box_w; ++x) c.set(x, y, 0xffffff);
+    c.line(bx, by, bx + box_w, by, ink);
+    c.line(bx, by + box_h, bx + box_w, by + box_h, ink);
+    c.line(bx, by, bx, by + box_h, ink);
+    c.line(bx + box_w, by, bx + box_w, by + box_h, ink);
+    int row = 0;
+    for (const PlotSeries& s : series) {
+      if (s.label.empty()) continue;
+      const int y = by + 7 + 14 * row++;
+      c.line(bx + 6, y + 3, bx + 26, y + 3, s.rgb, 3);
+      c.text(bx + 32, y, s.label, ink);
+    }
+  }
 
   c.text((o.width - text_width(o.title) * 2) / 2, 10, o.title, ink, 2);
   c.text((left + right - text_width(o.x_label)) / 2, o.height - 22, o.x_label, ink);

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -12,11 +13,15 @@ namespace prep {
 struct PlotSeries {
   std::vector<double> x, y;
   std::uint32_t rgb = 0x1f5fbf;  // line colour 0xRRGGBB
+  std::string label;             // shown in the legend (top right) when any series has one
+  std::vector<double> marks;     // x positions marked with a dot on the line (e.g. the launches)
 };
 
 struct PlotOptions {
   int width = 800, height = 500;
   std::string title, x_label, y_label;
+  // A fixed y range (both finite and y_max > y_min), else the data's.
+  double y_min = std::numeric_limits<double>::quiet_NaN(), y_max = std::numeric_limits<double>::quiet_NaN();
 };
 
 // An RGB image (row-major, 3 bytes a pixel) of the plot. Axis ranges cover every point (the y range also

@@ -53,3 +53,45 @@ TEST_CASE("a rising line is drawn low on the left and high on the right, inside 
     for (int x = o.width / 2 - 40; x < o.width / 2 + 40; ++x) dark += img[(static_cast<size_t>(y) * o.width + x) * 3] < 80;
   CHECK(dark > 20);
 }
+
+TEST_CASE("labelled series get a legend at the top right, marks a dot on the line, a fixed y range holds") {
+  PlotSeries flat, rise;
+  flat.rgb = 0x00a000;
+  flat.label = "flat";
+  rise.rgb = 0x0000ff;
+  rise.label = "rise";
+  for (int i = 0; i <= 10; ++i) {
+    flat.x.push_back(i);
+    flat.y.push_back(0.5);
+    rise.x.push_back(i);
+    rise.y.push_back(0.1 * i);
+  }
+  flat.marks = {5.0};
+  PlotOptions o;
+  o.y_min = 0.0;
+  o.y_max = 2.0;  // the data reach 1: the upper half of the frame stays empty but for the legend
+  const std::vector<std::uint8_t> img = render_line_plot({flat, rise}, o);
+  auto is = [&](int x, int y, std::uint32_t rgb) {
+    const std::uint8_t* p = &img[(static_cast<size_t>(y) * o.width + x) * 3];
+    return p[0] == (rgb >> 16 & 255) && p[1] == (rgb >> 8 & 255) && p[2] == (rgb & 255);
+  };
+  auto count = [&](int x0, int x1, int y0, int y1, std::uint32_t rgb) {
+    int n = 0;
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) n += is(x, y, rgb);
+    return n;
+  };
+  // The frame spans x 80 .. width-25 and y 40 .. height-55 (plot.cpp); the legend box sits at its top right.
+  const int right = o.width - 25, top = 40, bottom = o.height - 55;
+  CHECK(count(right - 120, right, top, top + 50, 0x00a000) > 20);  // the swatches
+  CHECK(count(right - 120, right, top, top + 50, 0x0000ff) > 20);
+  // With y fixed to 0..2, y = 1 lies half-way up: nothing of either line above a third of the height.
+  CHECK(count(80, right - 130, top, top + (bottom - top) / 3, 0x0000ff) == 0);
+  CHECK(count(80, right - 130, top, top + (bottom - top) / 3, 0x00a000) == 0);
+  // The mark at x = 5 (the middle) is a dot: a ring of dark ink around the line's colour there.
+  const int mx = (80 + right) / 2, my = bottom - (bottom - top) / 4;  // y = 0.5 of 0..2
+  int ring = 0;
+  for (int dy = -5; dy <= 5; ++dy)
+    for (int dx = -5; dx <= 5; ++dx) ring += is(mx + dx, my + dy, 0x202020);
+  CHECK(ring > 15);
+}

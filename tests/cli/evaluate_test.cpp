@@ -1,0 +1,107 @@
+// prep evaluate: the JSON shape, the markdown tables and the errors (the measures themselves are checked in
+// tests/world/evaluation_test.cpp).
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "app/cli/command.h"
+#include "engine/util/error.h"
+#include "tests/support/paths.h"
+
+using namespace prep;
+
+namespace {
+
+std::string run_evaluate(std::vector<std::string> args) {
+  CLI::App app{"test"};
+  for (auto& c : cli::commands())
+    if (c.name == "evaluate") c.define(*app.add_subcommand(c.name, c.help));
+  args.insert(args.begin(), "evaluate");
+  args.insert(args.end(), {"--policy-cache", test::tmp_dir() + "/policy-cache"});
+  std::reverse(args.begin(), args.end());  // CLI11 takes a vector in reverse order
+  std::ostringstream captured;
+  auto* previous = std::cout.rdbuf(captured.rdbuf());
+  try {
+    app.parse(args);
+  } catch (...) {
+    std::cout.rdbuf(previous);
+    throw;
+  }
+  std::cout.rdbuf(previous);
+  return captured.str();
+}
+
+const std::string kKick = test::repo() + "/assets/scenarios/kick.json";
+
+void check_frame_metrics(const nlohmann::json& j) {
+  for (const char* k : {"foot_skate_cm_per_frame", "pose_plausibility"}) {
+    CAPTURE(k);
+    REQUIRE(j.contains(k));
+    CHECK(j[k].is_number());
+  }
+  REQUIRE(j.contains("com_in_support"));
+  CHECK((j["com_in_support"].is_number() || j["com_in_support"].is_null()));
+  CHECK(j["frames"].get<int>() >= j["synthesized_frames"].get<int>());
+  CHECK(j["com_frames"].is_number_integer());
+}
+
+}  // namespace
+
+TEST_CASE("prep evaluate --json: one run's object in the issue's shape") {
+  const nlohmann::json j = nlohmann::json::parse(run_evaluate({"--scenario", kKick, "--method", "ours", "--json"}));
+  REQUIRE(j.is_object());
+  CHECK(j["scenario"] == "kick");
+  CHECK(j["motions"] == "builtin");
+  CHECK(j["method"] == "ours");
+  CHECK(j["seconds"].get<double>() > 0.0);
+  CHECK(j["ticks"].get<int>() == static_cast<int>(std::lround(j["seconds"].get<double>() * 60.0)));
+  const nlohmann::json& t = j["total"];
+  CHECK(t["reached_goal"].is_boolean());
+  CHECK((t["time_to_goal_s"].is_number() || t["time_to_goal_s"].is_null()));
+  check_frame_metrics(t);
+  CHECK(t["synthesis_us_per_frame"].get<double>() > 0.0);
+  REQUIRE(t["launches"].is_array());
+  REQUIRE_FALSE(t["launches"].empty());
+  for (const auto& l : t["launches"]) {
+    CAPTURE(l.dump());
+    CHECK(l["action"] == "kick");
+    for (const char* k : {"alpha_at_launch", "prep_lead_s", "peak_decel_mps2", "speed_at_launch_mps", "time_s"}) CHECK(l[k].is_number());
+    CHECK(l["alpha_at_launch"].get<double>() >= 0.0);
+    CHECK(l["alpha_at_launch"].get<double>() <= 1.0);
+  }
+  REQUIRE(j["characters"].size() == 1);
+  const nlohmann::json& c = j["characters"][0];
+  CHECK(c["control"] == "user");
+  CHECK(c["reached_goal"] == t["reached_goal"]);
+  check_frame_metrics(c);
+  CHECK(c["launches"].size() == t["launches"].size());
+}
+
+TEST_CASE("prep evaluate: several methods give a JSON array, --markdown prints the tables, --plot-dir a plot per scenario") {
+  const nlohmann::json a = nlohmann::json::parse(run_evaluate({"--scenario", kKick, "--method", "naive,ours", "--json"}));
+  REQUIRE(a.is_array());
+  REQUIRE(a.size() == 2);
+  CHECK(a[0]["method"] == "naive");
+  CHECK(a[1]["method"] == "ours");
+  CHECK(a[0]["total"]["com_in_support"].is_null());  // naive never has alpha >= 0.3
+  CHECK(a[0]["total"]["launches"][0]["alpha_at_launch"].get<double>() == 0.0);
+
+  const std::string dir = test::tmp_dir() + "/evaluate-plots";
+  std::filesystem::create_directories(dir);
+  std::filesystem::remove(dir + "/alpha_kick.png");
+  const std::string md = run_evaluate({"--scenario", kKick, "--markdown", "--plot-dir", dir});
+  CHECK(md.find("| kick | builtin | ours |") != std::string::npos);
+  CHECK(md.find("| kick | builtin | linear |") != std::string::npos);
+  CHECK(md.find("| kick | builtin | naive |") != std::string::npos);
+  CHECK(md.find("| kick (builtin) |") != std::string::npos);  // the acceptance table
+  CHECK(std::filesystem::file_size(dir + "/alpha_kick.png") > 1000);
+}
+
+TEST_CASE("prep evaluate refuses an unknown method and names a missing scenario file") {
+  CHECK_THROWS_WITH_AS(run_evaluate({"--scenario", kKick, "--method", "fancy"}), doctest::Contains("--method"), InputError);
+  CHECK_THROWS_WITH_AS(run_evaluate({"--scenario", "/nonexistent/s.json"}), doctest::Contains("/nonexistent/s.json"), InputError);
+}
