@@ -5,33 +5,80 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
+#include "app/demo/picking.h"
 #include "app/render/gl_api.h"
+#include "app/ui/panels.h"
+#include "engine/util/files.h"
 
 namespace prep::demo {
 
 using namespace prep::gl;
 
-render::Camera default_camera(const render::Scene& scene) {
-  render::Camera camera;
-  if (!scene.characters.empty()) {
-    const glm::vec3 root = scene.characters[0].joint_positions[0];
-    camera.target = glm::vec3(root.x, 0.9f, root.z);
-  }
-  camera.yaw = 0.9f;
-  camera.pitch = 0.28f;
-  camera.distance = 4.8f;
-  return camera;
-}
+namespace {
+constexpr float kPi = 3.14159265358979f;
+glm::vec2 forward_of(float heading) { return {std::sin(heading), std::cos(heading)}; }
+}  // namespace
 
-DemoApp::DemoApp(render::GlContext& context, DemoMotions motions, GLFWwindow* window, const render::RenderSettings& settings)
-    : context_(context), motions_(std::move(motions)) {
+DemoApp::DemoApp(render::GlContext& context, WorldSession& session, GLFWwindow* window, const render::RenderSettings& settings)
+    : context_(context), session_(session) {
   context_.make_current();
   renderer_ = std::make_unique<render::Renderer>(settings);
+  overlay_ = std::make_unique<render::Overlay>();
   ui_ = std::make_unique<render::ImGuiLayer>(window);
   gl_description_ = gl::describe_context();
-  if (!motions_.clips.empty()) camera = default_camera(clip_scene(motions_.clips[0], 0.0f, false));
+  scenarios = list_scenarios(default_scenarios_dir());
+  params_path = "params.json";
+  initial_goal_ = session_.goal();
+  reset_camera();
   last_frame_start_ = Clock::now();
+}
+
+DemoApp::~DemoApp() { context_.make_current(); }
+
+int DemoApp::triangles() const { return renderer_->triangles_last_frame() + overlay_->triangles_last_frame(); }
+
+void DemoApp::reset_camera() {
+  glm::vec2 at(0.0f);
+  float heading = 0.0f;
+  if (const World* w = session_.world()) {
+    const WorldCharacter& u = w->characters()[static_cast<size_t>(w->user())];
+    at = u.position;
+    heading = u.heading;
+  } else if (session_.scenario().user() >= 0) {
+    const ScenarioCharacter& u = session_.scenario().characters[static_cast<size_t>(session_.scenario().user())];
+    at = u.position;
+    heading = u.heading;
+  }
+  const glm::vec2 ahead = at + kLookAhead * forward_of(heading);
+  view.camera = render::Camera{};
+  view.camera.target = glm::vec3(ahead.x, 0.9f, ahead.y);
+  // Behind the character and over its left shoulder, high enough to see the course past it.
+  view.camera.yaw = heading + kPi - 0.42f;
+  view.camera.pitch = 0.33f;
+  view.camera.distance = 6.0f;
+}
+
+glm::vec2 DemoApp::camera_forward() const {
+  glm::vec3 f = view.camera.target - view.camera.eye();
+  glm::vec2 g(f.x, f.z);
+  const float len = glm::length(g);
+  return len > 1e-5f ? g / len : glm::vec2(0.0f, -1.0f);
+}
+
+void DemoApp::update_camera(float dt) {
+  const World* w = session_.world();
+  if (w != camera_world_) {  // a new world: frame it afresh
+    camera_world_ = w;
+    if (w) reset_camera();
+  }
+  if (!view.follow || !w || scene_.characters.empty()) return;
+  const int user = w->user();
+  const render::SceneCharacter& c = scene_.characters[static_cast<size_t>(user)];
+  const float heading = heading_of(c.joint_rotations[0]);
+  const glm::vec2 ahead = glm::vec2(c.joint_positions[0].x, c.joint_positions[0].z) + kLookAhead * forward_of(heading);
+  view.camera.follow(glm::vec3(ahead.x, 0.0f, ahead.y), dt, 0.5f);
 }
 
 void DemoApp::frame(float dt) {
@@ -46,12 +93,19 @@ void DemoApp::frame(float dt) {
   };
 
   auto t = Clock::now();
-  player.advance(motions_, dt);
+  const int ticks = session_.advance(dt);
+  const World::StageTimes& st = session_.stage_times();
+  engine_timings.control.add(st.control_ms);
+  engine_timings.motion.add(st.motion_ms);
+  engine_timings.synthesis.add(st.synthesis_ms);
+  engine_timings.balance.add(st.balance_ms);
+  engine_timings.total.add(st.total_ms);
+  engine_timings.ticks.add(ticks);
   finish_stage(kUpdate, t, false);
 
   t = Clock::now();
-  scene_ = motions_.clips.empty() ? render::Scene{} : clip_scene(motions_.clips[player.clip], player.time, show_props);
-  if (follow && !scene_.characters.empty()) camera.follow(scene_.characters[0].joint_positions[0], dt);
+  scene_ = session_.scene(view.show_balance);
+  update_camera(dt);
   renderer_->prepare(scene_);
   finish_stage(kScene, t, true);
 
@@ -61,13 +115,15 @@ void DemoApp::frame(float dt) {
 
   t = Clock::now();
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  renderer_->main_pass(camera, 0, 0, width, height);
-  last_view_projection_ = camera.view_projection(static_cast<float>(width) / std::max(height, 1));
+  renderer_->main_pass(view.camera, 0, 0, width, height);
+  last_view_projection_ = view.camera.view_projection(static_cast<float>(width) / std::max(height, 1));
+  overlay_->draw(scene_, last_view_projection_);
   finish_stage(kMainPass, t, true);
 
   t = Clock::now();
   panel_rects_.clear();
-  if (show_panels) {
+  const bool starting = session_.phase() != SessionPhase::Running;
+  if (view.show_panels || starting || !view.caption.empty()) {
     ui_->begin_frame(width, height, dt);
     draw_panels();
     ui_->end_frame();
@@ -81,125 +137,80 @@ void DemoApp::remember_panel(const char* name) {
 }
 
 void DemoApp::draw_panels() {
-  clip_player_panel();
-  camera_panel();
-  timings_panel();
+  if (!view.caption.empty()) {
+    ImDrawList* draw = ImGui::GetForegroundDrawList();
+    const float size = ImGui::GetFontSize() * view.caption_scale, shadow = std::max(1.0f, view.caption_scale);
+    const ImVec2 at(8.0f * view.caption_scale, 6.0f * view.caption_scale);
+    draw->AddText(ImGui::GetFont(), size, ImVec2(at.x + shadow, at.y + shadow), IM_COL32(255, 255, 255, 170), view.caption.c_str());
+    draw->AddText(ImGui::GetFont(), size, at, IM_COL32(15, 15, 15, 255), view.caption.c_str());
+  }
+  if (session_.phase() != SessionPhase::Running) ui::startup_panel(*this);
+  if (!view.show_panels) return;
+  ++panel_frames_;
+  ui::scenario_panel(*this);
+  ui::preparation_panel(*this);
+  ui::plots_panel(*this);
+  ui::timings_panel(*this);
+  ui::camera_panel(*this);
 }
 
-void DemoApp::clip_player_panel() {
-  ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(360, 0), ImGuiCond_FirstUseEver);
-  if (ImGui::Begin("Clip player")) {
-    if (motions_.clips.empty()) {
-      ImGui::TextUnformatted("no clips loaded");
-    } else {
-      const DemoClip& current = motions_.clips[player.clip];
-      ImGui::Text("motions: %s", motions_.source.c_str());
-      if (ImGui::BeginCombo("clip", current.clip.name.c_str())) {
-        for (size_t i = 0; i < motions_.clips.size(); ++i) {
-          const DemoClip& c = motions_.clips[i];
-          const std::string label = c.clip.name + (c.role ? std::string("  (") + role_name(*c.role) + ")" : "");
-          if (ImGui::Selectable(label.c_str(), static_cast<int>(i) == player.clip)) player.select(motions_, static_cast<int>(i));
-        }
-        ImGui::EndCombo();
-      }
-      if (ImGui::Button(player.playing ? "Pause" : "Play")) player.playing = !player.playing;
-      ImGui::SameLine();
-      if (ImGui::Button("<")) on_key(GLFW_KEY_LEFT);
-      ImGui::SameLine();
-      if (ImGui::Button(">")) on_key(GLFW_KEY_RIGHT);
-      ImGui::SameLine();
-      ImGui::Checkbox("loop", &player.loop);
-      ImGui::SameLine();
-      ImGui::Checkbox("obstacle", &show_props);
-      ImGui::SliderFloat("speed", &player.speed, 0.0f, 2.0f, "%.2fx");
-      const Clip& clip = motions_.clips[player.clip].clip;
-      ImGui::SliderFloat("time", &player.time, 0.0f, clip.duration(), "%.2f s");
-      ImGui::Text("frame %d / %d at %.0f fps%s", static_cast<int>(std::lround(player.time * clip.fps)),
-                  clip.frame_count() - 1, clip.fps,
-                  current.target_frame >= 0 ? ("   T_t = frame " + std::to_string(current.target_frame)).c_str() : "");
-    }
-    remember_panel("Clip player");
+void DemoApp::open_scenario(const std::string& path) {
+  try {
+    const Scenario next = load_scenario(path);
+    std::optional<Params> keep;
+    if (next.params_file == session_.scenario().params_file) keep = session_.params();  // the edits stay
+    session_.open(path, keep);
+    initial_goal_ = session_.goal();
+    camera_world_ = nullptr;
+    reset_camera();
+    message = "opened " + next.name;
+  } catch (const std::exception& e) {
+    message = e.what();
   }
-  ImGui::End();
-}
-
-void DemoApp::camera_panel() {
-  ImGui::SetNextWindowPos(ImVec2(10, 200), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(360, 0), ImGuiCond_FirstUseEver);
-  if (ImGui::Begin("Camera")) {
-    ImGui::Checkbox("follow the character", &follow);
-    ImGui::SliderAngle("yaw", &camera.yaw, -180.0f, 180.0f);
-    ImGui::SliderAngle("pitch", &camera.pitch, -10.0f, 85.0f);
-    ImGui::SliderFloat("distance", &camera.distance, 0.5f, 40.0f, "%.1f m", ImGuiSliderFlags_Logarithmic);
-    ImGui::SliderAngle("field of view", &camera.fov_y, 20.0f, 100.0f);
-    if (ImGui::Button("Reset")) camera = default_camera(scene_);
-    ImGui::SameLine();
-    if (ImGui::Button("Side view") && !motions_.clips.empty()) {
-      const render::Camera side = strip_camera(motions_.clips[player.clip]);
-      camera.yaw = side.yaw;
-      camera.pitch = 0.1f;
-    }
-    ImGui::TextDisabled("drag: orbit  right-drag: pan  wheel: zoom");
-    ImGui::TextDisabled("Q/E R/F Z/X orbit, tilt, zoom  C follow");
-    remember_panel("Camera");
-  }
-  ImGui::End();
-}
-
-void DemoApp::timings_panel() {
-  const float width = 300.0f;
-  ImGui::SetNextWindowPos(ImVec2(static_cast<float>(context_.width()) - width - 10.0f, 10), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(width, 0), ImGuiCond_FirstUseEver);
-  if (ImGui::Begin("Timings")) {
-    ImGui::Text("%.1f frames/s  (%.2f ms per frame)", timings.fps(), timings.frame_ms());
-    if (ImGui::BeginTable("stages", 2)) {
-      for (int s = 0; s < kStageCount; ++s) {
-        if (s == kFinish) continue;  // measured outside the frame by the caller, shown below when known
-        ImGui::TableNextRow();
-        ImGui::TableNextColumn();
-        ImGui::TextUnformatted(stage_name(s));
-        ImGui::TableNextColumn();
-        ImGui::Text("%6.2f ms", timings.average_ms(s));
-      }
-      ImGui::TableNextRow();
-      ImGui::TableNextColumn();
-      ImGui::TextUnformatted(context_.headless() ? "finish" : "swap");
-      ImGui::TableNextColumn();
-      ImGui::Text("%6.2f ms", timings.average_ms(kFinish));
-      ImGui::EndTable();
-    }
-    ImGui::Checkbox("time each stage (glFinish)", &sync_stages);
-    ImGui::Text("%d triangles", renderer_->triangles_last_frame());
-    ImGui::TextWrapped("%s", gl_description_.c_str());
-    remember_panel("Timings");
-  }
-  ImGui::End();
 }
 
 void DemoApp::on_key(int key) {
   const float step = 0.15f;
-  const Clip* clip = motions_.clips.empty() ? nullptr : &motions_.clips[player.clip].clip;
+  const glm::vec2 f = camera_forward(), right(-f.y, f.x);
   switch (key) {
-    case GLFW_KEY_SPACE: player.playing = !player.playing; break;
-    case GLFW_KEY_LEFT:
-    case GLFW_KEY_RIGHT:
-      if (clip) {
-        player.playing = false;
-        const float frame = std::round(player.time * clip->fps) + (key == GLFW_KEY_RIGHT ? 1.0f : -1.0f);
-        player.time = std::clamp(frame / clip->fps, 0.0f, clip->duration());
-      }
+    case GLFW_KEY_W:
+    case GLFW_KEY_UP: session_.move_goal(kGoalStep * f); break;
+    case GLFW_KEY_S:
+    case GLFW_KEY_DOWN: session_.move_goal(-kGoalStep * f); break;
+    case GLFW_KEY_D:
+    case GLFW_KEY_RIGHT: session_.move_goal(kGoalStep * right); break;
+    case GLFW_KEY_A:
+    case GLFW_KEY_LEFT: session_.move_goal(-kGoalStep * right); break;
+    case GLFW_KEY_1:
+    case GLFW_KEY_2:
+    case GLFW_KEY_3:
+    case GLFW_KEY_4:
+    case GLFW_KEY_5:
+    case GLFW_KEY_6: {
+      const auto action = static_cast<TargetAction>(key - GLFW_KEY_1);
+      if (!session_.launch(action)) message = std::string("cannot launch ") + target_action_name(action) + " now";
       break;
-    case GLFW_KEY_UP: player.select(motions_, player.clip - 1); break;
-    case GLFW_KEY_DOWN: player.select(motions_, player.clip + 1); break;
-    case GLFW_KEY_Q: camera.orbit(-step, 0.0f); break;
-    case GLFW_KEY_E: camera.orbit(step, 0.0f); break;
-    case GLFW_KEY_R: camera.orbit(0.0f, step); break;
-    case GLFW_KEY_F: camera.orbit(0.0f, -step); break;
-    case GLFW_KEY_Z: camera.zoom(1.0f / 1.15f); break;
-    case GLFW_KEY_X: camera.zoom(1.15f); break;
-    case GLFW_KEY_C: follow = !follow; break;
-    case GLFW_KEY_P: show_panels = !show_panels; break;
+    }
+    case GLFW_KEY_SPACE:
+    case GLFW_KEY_ENTER:
+      if (!session_.launch_prepared()) message = "nothing to launch: no source of influence ahead";
+      break;
+    case GLFW_KEY_T: session_.set_auto(!session_.auto_launch()); break;
+    case GLFW_KEY_P: session_.paused = !session_.paused; break;
+    case GLFW_KEY_PERIOD: session_.step_once(); break;
+    case GLFW_KEY_N:
+      session_.restart();
+      initial_goal_ = session_.goal();
+      break;
+    case GLFW_KEY_B: view.show_balance = !view.show_balance; break;
+    case GLFW_KEY_H: view.show_panels = !view.show_panels; break;
+    case GLFW_KEY_Q: view.camera.orbit(-step, 0.0f); break;
+    case GLFW_KEY_E: view.camera.orbit(step, 0.0f); break;
+    case GLFW_KEY_R: view.camera.orbit(0.0f, step); break;
+    case GLFW_KEY_F: view.camera.orbit(0.0f, -step); break;
+    case GLFW_KEY_Z: view.camera.zoom(1.0f / 1.15f); break;
+    case GLFW_KEY_X: view.camera.zoom(1.15f); break;
+    case GLFW_KEY_C: view.follow = !view.follow; break;
     case GLFW_KEY_ESCAPE: quit_requested = true; break;
     default: break;
   }
@@ -207,14 +218,43 @@ void DemoApp::on_key(int key) {
 
 void DemoApp::on_drag(float dx, float dy, bool pan) {
   if (pan) {
-    const float metres_per_pixel = 2.0f * camera.distance * std::tan(0.5f * camera.fov_y) / std::max(context_.height(), 1);
-    camera.pan(-dx * metres_per_pixel, dy * metres_per_pixel);
-    follow = false;
+    const render::Camera& c = view.camera;
+    const float metres_per_pixel = 2.0f * c.distance * std::tan(0.5f * c.fov_y) / std::max(context_.height(), 1);
+    view.camera.pan(-dx * metres_per_pixel, dy * metres_per_pixel);
+    view.follow = false;
   } else {
-    camera.orbit(-dx * 0.008f, dy * 0.008f);
+    view.camera.orbit(-dx * 0.008f, dy * 0.008f);
   }
 }
 
-void DemoApp::on_scroll(float steps) { camera.zoom(std::pow(0.9f, steps)); }
+void DemoApp::on_scroll(float steps) { view.camera.zoom(std::pow(0.9f, steps)); }
+
+void DemoApp::on_click(glm::vec2 pixel, bool right) {
+  if (right) {
+    if (!session_.launch_prepared()) message = "nothing to launch: no source of influence ahead";
+    return;
+  }
+  const Ray ray = pixel_ray(last_view_projection_, pixel, context_.width(), context_.height());
+  if (const World* w = session_.world()) {
+    if (const auto k = pick_object(*w, ray)) {
+      session_.pick_object(*k);
+      const ScenarioObject& o = session_.scenario().objects[static_cast<size_t>(*k)];
+      message = std::string("source of influence: ") + object_type_name(o.type) + " (" + target_action_name(o.action) + ")";
+      return;
+    }
+  }
+  if (const auto p = ray_floor(ray)) session_.set_goal(*p);
+}
+
+std::string DemoApp::closing_report() const {
+  const glm::vec2 g = session_.goal();
+  char text[256];
+  const World* w = session_.world();
+  std::snprintf(text, sizeof text, "scenario %s, %s, t = %.2f s, goal %.2f %.2f -> %.2f %.2f, %d launches, auto %s",
+                session_.scenario().name.c_str(), phase_name(session_.phase()), w ? w->time() : 0.0f, initial_goal_.x,
+                initial_goal_.y, g.x, g.y, w ? static_cast<int>(w->launches().size()) : 0,
+                session_.auto_launch() ? "on" : "off");
+  return text;
+}
 
 }  // namespace prep::demo

@@ -1,64 +1,101 @@
-// The demo's frame: advance the clip player, build the scene, draw it (shadow map, main pass), draw the
-// panels, all into the current context's framebuffer; the same code runs in the window and headless.
+// The demo (Sec. 7): a scenario's world (WorldSession: fixed-step engine, background training) drawn by the
+// renderer with the balance overlay and the ImGui panels of app/ui, and the input that drives it: keys
+// move the goal and launch target motions, a left click on the floor sets the goal and on an object makes
+// it the source of influence, a right click launches the action the source calls for. The same class
+// runs in the GLFW window and headless through OSMesa (screenshots, videos, benchmarks).
+//
+// Keys: W A S D / arrows move the goal 1 m (relative to the camera: W away from it); 1-6 launch kick,
+// crawl, duck, jump, punch_left, punch_right; Space launches the prepared action; T toggles auto; P
+// pauses; . steps one tick while paused; N restarts; B toggles the support polygon and COM; H hides the
+// panels; Q/E orbit, R/F tilt, Z/X zoom, C follow; Escape quits.
 #pragma once
 
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
+#include <glm/mat4x4.hpp>
 #include <glm/vec4.hpp>
 
-#include "app/demo/clip_view.h"
-#include "app/demo/motions.h"
 #include "app/demo/timings.h"
+#include "app/demo/window_app.h"
+#include "app/demo/world_session.h"
 #include "app/render/camera.h"
 #include "app/render/gl_context.h"
 #include "app/render/imgui_layer.h"
+#include "app/render/overlay.h"
 #include "app/render/renderer.h"
 
 namespace prep::demo {
 
-class DemoApp {
- public:
-  // window: the GLFW window for ImGui's input, or nullptr headless.
-  DemoApp(render::GlContext& context, DemoMotions motions, GLFWwindow* window, const render::RenderSettings& settings = {});
-
-  // One frame of dt seconds into the context's framebuffer (the caller ends the frame).
-  void frame(float dt);
-
-  // A key press (GLFW key codes), from the window or from a --script.
-  void on_key(int key);
-  // Mouse input already filtered by ImGui's capture: drag in pixels, scroll in steps.
-  void on_drag(float dx, float dy, bool pan);
-  void on_scroll(float steps);
-
-  ClipPlayer player;
+// What the panels toggle about the view.
+struct DemoView {
   render::Camera camera;
-  bool follow = true;          // the camera's target follows the character
+  bool follow = true;         // the camera follows the user's character (looking a little ahead of it)
   bool show_panels = true;
-  bool show_props = true;
-  bool sync_stages = false;    // glFinish after each GL stage, so each stage's ms is its own (costs fps)
-  bool quit_requested = false;
-  Timings timings;
+  bool show_balance = true;   // the support polygon and COM on the floor
+  std::string caption;        // drawn at the top-left when not empty (strip tiles), caption_scale times the panel text
+  float caption_scale = 1.0f;
+};
 
-  const DemoMotions& motions() const { return motions_; }
+// Per-frame engine stage times (World::StageTimes summed over the frame's ticks), averaged.
+struct EngineTimings {
+  RunningAverage control, motion, synthesis, balance, total, ticks;
+};
+
+class DemoApp final : public WindowApp {
+ public:
+  static constexpr float kGoalStep = 1.0f;        // m per key press
+  static constexpr float kLookAhead = 1.2f;       // m ahead of the character the followed camera aims at
+
+  // window: the GLFW window for ImGui's input, or nullptr headless. The session must outlive the app.
+  DemoApp(render::GlContext& context, WorldSession& session, GLFWwindow* window, const render::RenderSettings& settings = {});
+  ~DemoApp() override;
+
+  void frame(float dt) override;  // advances the session by dt, then draws
+  void on_key(int key) override;
+  void on_drag(float dx, float dy, bool pan) override;
+  void on_scroll(float steps) override;
+  void on_click(glm::vec2 pixel, bool right) override;
+  std::string closing_report() const override;
+
+  // Opens a scenario from the picker (keeps the edited Params when the new one names the same Params file);
+  // a bad file leaves a message and the current scenario.
+  void open_scenario(const std::string& path);
+  // The camera placed behind the user's character, looking along its heading at the course ahead.
+  void reset_camera();
+
+  WorldSession& session() { return session_; }
+  const WorldSession& session() const { return session_; }
+  DemoView view;
+  EngineTimings engine_timings;
+  std::vector<ScenarioEntry> scenarios;  // the picker's list (default_scenarios_dir())
+  std::string params_path;               // the Preparation panel's save/load file
+  std::string message;                   // the last save/load/open outcome, shown in the panels
+
   const render::Scene& scene() const { return scene_; }
   const render::Renderer& renderer() const { return *renderer_; }
+  int triangles() const override;
+  const std::string& gl_description() const { return gl_description_; }
+  int width() const { return context_.width(); }
+  int height() const { return context_.height(); }
+  bool headless() const { return context_.headless(); }
   // Screen rectangles (x, y, width, height; pixels from the top-left) of the panels drawn last frame.
   const std::map<std::string, glm::vec4>& panel_rects() const { return panel_rects_; }
-  // The camera used for the last frame (after following).
+  void remember_panel(const char* name);  // called by each panel between Begin and End
+  int panel_frames() const { return panel_frames_; }  // frames drawn with panels so far
   glm::mat4 last_view_projection() const { return last_view_projection_; }
 
  private:
+  void update_camera(float dt);
   void draw_panels();
-  void clip_player_panel();
-  void camera_panel();
-  void timings_panel();
-  void remember_panel(const char* name);
+  glm::vec2 camera_forward() const;  // unit, on the floor
 
   render::GlContext& context_;
-  DemoMotions motions_;
+  WorldSession& session_;
   std::unique_ptr<render::Renderer> renderer_;
+  std::unique_ptr<render::Overlay> overlay_;
   std::unique_ptr<render::ImGuiLayer> ui_;
   render::Scene scene_;
   std::map<std::string, glm::vec4> panel_rects_;
@@ -66,9 +103,10 @@ class DemoApp {
   std::string gl_description_;
   Clock::time_point last_frame_start_;
   bool first_frame_ = true;
+  int panel_frames_ = 0;
+  bool camera_placed_ = false;  // reset_camera() ran for the world now running
+  const World* camera_world_ = nullptr;
+  glm::vec2 initial_goal_{0.0f};
 };
-
-// The camera that frames a clip's character from its front-right, at the usual distance.
-render::Camera default_camera(const render::Scene& scene);
 
 }  // namespace prep::demo

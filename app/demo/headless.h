@@ -1,9 +1,12 @@
-// Headless runs of the demo (OSMesa): one screenshot, or a benchmark of N frames.
+// Headless runs (OSMesa): a clip viewer screenshot, and benchmarks of any WindowApp (the scenario demo or
+// the clip viewer) with frames per second and milliseconds per stage.
 #pragma once
 
 #include <string>
 
-#include "app/demo/demo_app.h"
+#include "app/demo/clip_viewer_app.h"
+#include "app/demo/window_app.h"
+#include "app/render/gl_context.h"
 
 namespace prep::demo {
 
@@ -19,7 +22,7 @@ struct HeadlessOptions {
 // Frames drawn before a screenshot is read: ImGui lays out new auto-sized windows over the first frames.
 constexpr int kSettleFrames = 3;
 
-// Draws the demo paused at options.time and returns the image (panels included unless disabled).
+// Draws the clip viewer paused at options.time and returns the image (panels included unless disabled).
 render::Image headless_screenshot(const DemoMotions& motions, const HeadlessOptions& options);
 
 struct BenchResult {
@@ -30,8 +33,14 @@ struct BenchResult {
   int triangles = 0;
 };
 
-// Plays the clip for `frames` frames (1/60 s each) twice: free-running for the frame rate, then with
-// every stage synchronised for the per-stage milliseconds.
+// Runs `frames` frames of `dt` twice: free-running for the frame rate, then with every stage synchronised
+// for the per-stage milliseconds (after a few unmeasured frames: shader compilation, font atlas, layout).
+BenchResult bench_app(WindowApp& app, render::GlContext& context, int frames, float dt = 1.0f / 60.0f);
+
+// The clip viewer playing options.clip.
 BenchResult headless_bench(const DemoMotions& motions, const HeadlessOptions& options, int frames);
+
+// "1280x720 with panels, 600 frames, N triangles\n  free-running: ..." as prep-demo prints it.
+std::string bench_report(const BenchResult& r, int width, int height, bool panels, int frames);
 
 }  // namespace prep::demo

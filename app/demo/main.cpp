@@ -1,5 +1,6 @@
-// prep-demo: the interactive demo (GLFW window, OpenGL 3.3, Dear ImGui) and its headless mode (OSMesa):
-// PNG strips and screenshots of clips, and a frame-rate benchmark.
+// prep-demo: the interactive demo (GLFW window, OpenGL 3.3, Dear ImGui) on a scenario of Sec. 7.2 (by
+// default the obstacle course), its headless mode (OSMesa: screenshots, frames, video, a strip, the
+// launches as JSON, a frame-rate benchmark), and the clip viewer (--viewer, --clip or --bvh).
 #include <CLI/CLI.hpp>
 
 #include <iomanip>
@@ -10,6 +11,7 @@
 #include "app/demo/scenario_run.h"
 #include "app/demo/strip.h"
 #include "app/demo/windowed.h"
+#include "app/demo/world_session.h"
 #include "app/render/gl_context.h"
 #include "app/render/image.h"
 #include "app/render/renderer.h"
@@ -18,130 +20,146 @@
 using namespace prep;
 using namespace prep::demo;
 
+namespace {
+
+int clip_viewer(bool headless, const std::string& motions_arg, const std::string& bvh, float unit_scale,
+                const std::string& clip_name, const std::string& params_file, int width, int height,
+                const WindowOptions& w, const std::string& strip, int frames, const std::string& screenshot, float time, bool no_panels,
+                bool no_props, int bench_frames, const render::RenderSettings& render) {
+  const Params params = params_file.empty() ? Params{} : load_params(params_file);
+  const DemoMotions motions = load_demo_motions(motions_arg, bvh, unit_scale, params);
+  if (motions.clips.empty()) throw std::runtime_error(motions.source + ": no clips");
+  int clip = 0;
+  if (!clip_name.empty()) {
+    clip = motions.find(clip_name);
+    if (clip < 0) {
+      std::string names;
+      for (const DemoClip& c : motions.clips) names += " " + c.clip.name;
+      throw std::runtime_error("no clip named \"" + clip_name + "\" in " + motions.source + "; clips:" + names);
+    }
+  }
+  if (!headless) {
+    if (!strip.empty() || bench_frames > 0) throw std::runtime_error("--strip and --bench-frames need --headless");
+    WindowOptions o = w;
+    o.clip = clip;
+    run_clip_viewer_window(motions, o);
+    return 0;
+  }
+  if (strip.empty() && screenshot.empty() && bench_frames <= 0)
+    throw std::runtime_error("the clip viewer headless needs --strip, --screenshot or --bench-frames");
+  if (!strip.empty()) {
+    StripOptions s;
+    s.frames = frames;
+    s.tile_width = width > 0 ? width : s.tile_width;
+    s.tile_height = height > 0 ? height : s.tile_height;
+    s.props = !no_props;
+    render::write_png(render_strip(motions.clips[clip], s), strip);
+    std::cout << "prep-demo: wrote " << strip << " (" << motions.clips[clip].clip.name << ", " << frames << " frames, "
+              << s.tile_width * frames << "x" << s.tile_height << ")\n";
+  }
+  HeadlessOptions h;
+  h.width = w.width;
+  h.height = w.height;
+  h.clip = clip;
+  h.time = time;
+  h.panels = !no_panels;
+  h.render = render;
+  if (!screenshot.empty()) {
+    render::write_png(headless_screenshot(motions, h), screenshot);
+    std::cout << "prep-demo: wrote " << screenshot << " (" << motions.clips[clip].clip.name << " at " << time << " s, "
+              << h.width << "x" << h.height << ")\n";
+  }
+  if (bench_frames > 0)
+    std::cout << "prep-demo: clip " << motions.clips[clip].clip.name << ", "
+              << bench_report(headless_bench(motions, h, bench_frames), h.width, h.height, h.panels, bench_frames) << "\n";
+  return 0;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   CLI::App cli{"prep-demo: characters that prepare for what comes next (Shum et al. 2013).\n"
-               "Without --headless it opens a window; with --headless it renders through OSMesa."};
-  bool headless = false;
-  std::string motions_arg = "builtin", bvh, clip_name, strip, screenshot, params_file, script;
-  float unit_scale = 0.01f, time = 0.0f;
+               "Opens a window on a scenario (default: the obstacle course); --headless renders through OSMesa.\n"
+               "In the window: WASD/arrows move the goal, 1-6 or Space or a right-click launch target motions,\n"
+               "a left click sets the goal (floor) or the source of influence (an object), T toggles auto."};
+  bool headless = false, viewer = false;
+  std::string scenario, motions_arg = "builtin", bvh, clip_name, strip, screenshot, params_file, script, frames_dir, video;
+  float unit_scale = 0.01f, time = 0.0f, seconds = 30.0f;
   int frames = 8, width = 0, height = 0, bench_frames = 0, screenshot_after = 60, quit_after = -1;
   int shadow_map = render::RenderSettings{}.shadow_map_size;
-  bool no_panels = false, no_props = false, no_vsync = false;
+  bool no_panels = false, no_props = false, no_vsync = false, json = false, capsules = false;
   cli.add_flag("--headless", headless, "Render off-screen through OSMesa (no display needed)");
-  cli.add_option("--motions", motions_arg, "builtin, or a motion-set manifest (JSON)")->capture_default_str();
-  cli.add_option("--bvh", bvh, "Play one BVH file instead of a motion set");
-  cli.add_option("--unit-scale", unit_scale, "BVH units to metres (0.01 for centimetres)")->capture_default_str();
-  cli.add_option("--clip", clip_name, "Clip to show (default: the first)");
-  cli.add_option("--params", params_file, "Params JSON (default: built-in defaults)");
-  cli.add_option("--strip", strip, "Headless: write a strip of --frames frames of the clip to this PNG");
-  cli.add_option("--frames", frames, "Frames in a strip")->capture_default_str()->check(CLI::Range(1, 64));
-  cli.add_option("--screenshot", screenshot, "Write one frame (panels included) to this PNG");
-  cli.add_option("--time", time, "Headless screenshot: seconds into the clip")->capture_default_str();
-  cli.add_option("--width", width, "Image or window width (strip: width of one tile; default 1280, strip 320)");
-  cli.add_option("--height", height, "Image or window height (strip: tile height; default 720, strip 480)");
+  cli.add_option("--scenario", scenario, "Scenario JSON (default: assets/scenarios/obstacles.json)");
+  cli.add_option("--seconds", seconds, "Headless scenario: simulated seconds")->capture_default_str();
+  cli.add_option("--params", params_file, "Params JSON (default: the scenario's, or the built-in defaults)");
+  cli.add_option("--screenshot", screenshot, "Write one frame (panels included) to this PNG: headless the last one");
+  cli.add_option("--frames-dir", frames_dir, "Headless scenario: a PNG per frame (30 frames/s) into this folder");
+  cli.add_option("--video", video, "Headless scenario: an MP4 through ffmpeg (without ffmpeg: a PNG strip)");
+  cli.add_option("--strip", strip, "Headless: a PNG strip (scenario: 6 frames of the run; clip: --frames frames)");
+  cli.add_flag("--json", json, "Headless scenario: print the launches (action, alpha_at_launch, time) and the goal as JSON");
+  cli.add_option("--width", width, "Image or window width (default 1280; clip strip: width of one tile, 320)");
+  cli.add_option("--height", height, "Image or window height (default 720; clip strip: tile height, 480)");
   cli.add_option("--bench-frames", bench_frames, "Headless: draw N frames, print frames/s and ms per stage");
   cli.add_option("--shadow-map", shadow_map, "Shadow map size in texels (0: no shadows)")->capture_default_str();
+  cli.add_flag("--capsules", capsules, "Draw the characters as capsules per bone instead of the skinned body");
   cli.add_flag("--no-panels", no_panels, "Do not draw the ImGui panels");
-  cli.add_flag("--no-obstacle", no_props, "Do not place the obstacle of the clip's role (bar, beam, hurdle, ball)");
-  cli.add_option("--script", script, "Window: scripted key presses FRAME:KEY,... (e.g. 20:e,40:space)");
+  cli.add_option("--script", script, "Window: scripted key presses FRAME:KEY,... (e.g. 20:w,40:space)");
   cli.add_option("--screenshot-after", screenshot_after, "Window: frame after which --screenshot is taken (-1: on closing, e.g. Escape)")->capture_default_str();
   cli.add_option("--quit-after", quit_after, "Window: close after this many frames");
   cli.add_flag("--no-vsync", no_vsync, "Window: do not wait for the display's refresh");
-  std::string scenario, frames_dir, video;
-  float seconds = 30.0f;
-  bool json = false;
-  cli.add_option("--scenario", scenario, "Headless: run this scenario (engine/world) and draw it");
-  cli.add_option("--seconds", seconds, "Scenario: simulated seconds")->capture_default_str();
-  cli.add_option("--frames-dir", frames_dir, "Scenario: write a PNG per frame (30 frames/s) into this folder");
-  cli.add_option("--video", video, "Scenario: write an MP4 through ffmpeg");
-  cli.add_flag("--json", json, "Scenario: print the launches (action, alpha_at_launch, time) and the goal as JSON");
+  cli.add_flag("--viewer", viewer, "The clip viewer instead of a scenario (also chosen by --clip, --bvh, --motions)");
+  cli.add_option("--motions", motions_arg, "Clip viewer: builtin, or a motion-set manifest (JSON)")->capture_default_str();
+  cli.add_option("--bvh", bvh, "Clip viewer: play one BVH file");
+  cli.add_option("--unit-scale", unit_scale, "Clip viewer: BVH units to metres (0.01 for centimetres)")->capture_default_str();
+  cli.add_option("--clip", clip_name, "Clip viewer: the clip to show (default: the first)");
+  cli.add_option("--frames", frames, "Clip viewer: frames in a strip")->capture_default_str()->check(CLI::Range(1, 64));
+  cli.add_option("--time", time, "Clip viewer, headless screenshot: seconds into the clip")->capture_default_str();
+  cli.add_flag("--no-obstacle", no_props, "Clip viewer: do not place the obstacle of the clip's role");
   CLI11_PARSE(cli, argc, argv);
-  if (headless && !scenario.empty()) {
-    try {
+
+  render::RenderSettings render;
+  render.shadow_map_size = shadow_map;
+  render.skinned_bodies = !capsules;
+  WindowOptions w;
+  w.width = width > 0 ? width : w.width;
+  w.height = height > 0 ? height : w.height;
+  w.vsync = !no_vsync;
+  w.screenshot = screenshot;
+  w.screenshot_after = screenshot_after;
+  w.quit_after = quit_after;
+  try {
+    w.script = parse_key_script(script);
+    viewer = viewer || !bvh.empty() || !clip_name.empty() || motions_arg != "builtin";
+    if (viewer) {
+      if (!scenario.empty()) throw std::runtime_error("--scenario and the clip viewer (--viewer, --clip, --bvh, --motions) exclude each other");
+      return clip_viewer(headless, motions_arg, bvh, unit_scale, clip_name, params_file, width, height, w, strip, frames, screenshot, time,
+                         no_panels, no_props, bench_frames, render);
+    }
+    if (scenario.empty()) scenario = default_scenario_path();
+    if (headless) {
       ScenarioRunOptions o;
       o.scenario = scenario;
       o.seconds = seconds;
-      o.width = width > 0 ? width : o.width;
-      o.height = height > 0 ? height : o.height;
+      o.width = w.width;
+      o.height = w.height;
       o.screenshot = screenshot;
       o.frames_dir = frames_dir;
       o.video = video;
+      o.strip = strip;
       o.params = params_file;
       o.json = json;
+      o.panels = !no_panels;
+      o.bench_frames = bench_frames;
+      o.render = render;
       return run_scenario_headless(o);
-    } catch (const std::exception& e) {
+    }
+    if (!frames_dir.empty() || !video.empty() || !strip.empty() || json || bench_frames > 0)
+      throw std::runtime_error("--frames-dir, --video, --strip, --json and --bench-frames need --headless");
+    try {
+      run_demo_window(scenario, params_file.empty() ? std::nullopt : std::optional<Params>(load_params(params_file)), w);
+    } catch (const render::NoDisplayError& e) {
       std::cerr << "prep-demo: " << e.what() << "\n";
-      return 1;
-    }
-  }
-
-  try {
-    const Params params = params_file.empty() ? Params{} : load_params(params_file);
-    const DemoMotions motions = load_demo_motions(motions_arg, bvh, unit_scale, params);
-    if (motions.clips.empty()) throw std::runtime_error(motions.source + ": no clips");
-    int clip = 0;
-    if (!clip_name.empty()) {
-      clip = motions.find(clip_name);
-      if (clip < 0) {
-        std::string names;
-        for (const DemoClip& c : motions.clips) names += " " + c.clip.name;
-        throw std::runtime_error("no clip named \"" + clip_name + "\" in " + motions.source + "; clips:" + names);
-      }
-    }
-
-    if (!headless) {
-      if (!strip.empty() || bench_frames > 0) throw std::runtime_error("--strip and --bench-frames need --headless");
-      WindowOptions w;
-      w.width = width > 0 ? width : w.width;
-      w.height = height > 0 ? height : w.height;
-      w.clip = clip;
-      w.vsync = !no_vsync;
-      w.script = parse_key_script(script);
-      w.screenshot = screenshot;
-      w.screenshot_after = screenshot_after;
-      w.quit_after = quit_after;
-      try {
-        run_window(motions, w);
-      } catch (const render::NoDisplayError& e) {
-        std::cerr << "prep-demo: " << e.what() << "\n";
-        return 2;
-      }
-      return 0;
-    }
-
-    if (strip.empty() && screenshot.empty() && bench_frames <= 0)
-      throw std::runtime_error("--headless needs --strip, --screenshot or --bench-frames");
-    if (!strip.empty()) {
-      StripOptions s;
-      s.frames = frames;
-      s.tile_width = width > 0 ? width : s.tile_width;
-      s.tile_height = height > 0 ? height : s.tile_height;
-      s.props = !no_props;
-      render::write_png(render_strip(motions.clips[clip], s), strip);
-      std::cout << "prep-demo: wrote " << strip << " (" << motions.clips[clip].clip.name << ", " << frames << " frames, "
-                << s.tile_width * frames << "x" << s.tile_height << ")\n";
-    }
-    HeadlessOptions h;
-    h.width = width > 0 ? width : h.width;
-    h.height = height > 0 ? height : h.height;
-    h.clip = clip;
-    h.time = time;
-    h.panels = !no_panels;
-    h.render.shadow_map_size = shadow_map;
-    if (!screenshot.empty()) {
-      render::write_png(headless_screenshot(motions, h), screenshot);
-      std::cout << "prep-demo: wrote " << screenshot << " (" << motions.clips[clip].clip.name << " at " << time << " s, "
-                << h.width << "x" << h.height << ")\n";
-    }
-    if (bench_frames > 0) {
-      const BenchResult r = headless_bench(motions, h, bench_frames);
-      std::cout << std::fixed << std::setprecision(1) << "prep-demo: " << h.width << "x" << h.height
-                << (h.panels ? " with panels" : " without panels") << ", " << bench_frames << " frames, " << r.triangles
-                << " triangles\n  free-running: " << r.fps << " frames/s; CPU time " << r.cpu_ms_per_frame
-                << " ms per frame over all threads\n  each stage finished (glFinish): "
-                << r.synced_fps << " frames/s; ms per stage:" << std::setprecision(2);
-      for (int s = 0; s < kStageCount; ++s) std::cout << "  " << stage_name(s) << " " << r.stage_ms[s];
-      std::cout << "\n";
+      return 2;
     }
   } catch (const std::exception& e) {
     std::cerr << "prep-demo: " << e.what() << "\n";

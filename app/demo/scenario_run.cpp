@@ -1,113 +1,212 @@
 #include "app/demo/scenario_run.h"
 
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
-#include <unistd.h>
+#include <memory>
+#include <stdexcept>
 
-#include "app/render/camera.h"
+#include "app/demo/demo_app.h"
+#include "app/demo/headless.h"
+#include "app/demo/world_session.h"
 #include "app/render/gl_context.h"
 #include "app/render/image.h"
-#include "app/render/palette.h"
-#include "app/render/renderer.h"
-#include "engine/world/policy_cache.h"
 
 namespace prep::demo {
 
-render::Scene to_render_scene(const WorldScene& world) {
-  render::Scene s;
-  for (const WorldScene::Character& c : world.characters) {
-    render::SceneCharacter rc = render::make_scene_character(
-        c.skeleton, *c.pose, c.user ? render::palette::kCharacter : render::palette::kOtherCharacter);
-    rc.is_source = c.is_source;
-    s.characters.push_back(std::move(rc));
-  }
-  for (const WorldScene::Object& o : world.objects) {
-    render::SceneObject ro;
-    switch (o.type) {
-      case ObjectType::Ball: ro.type = render::ObjectType::Ball; break;
-      case ObjectType::Bar: ro.type = render::ObjectType::Bar; break;
-      case ObjectType::Beam: ro.type = render::ObjectType::Beam; break;
-      case ObjectType::Hurdle: ro.type = render::ObjectType::Hurdle; break;
-      case ObjectType::Opponent: continue;  // drawn as a character
+bool ffmpeg_available() { return std::system("command -v ffmpeg > /dev/null 2>&1") == 0; }
+
+render::Image downscale(const render::Image& image, int factor) {
+  if (factor <= 1) return image;
+  render::Image out(image.width / factor, image.height / factor);
+  for (int y = 0; y < out.height; ++y)
+    for (int x = 0; x < out.width; ++x) {
+      int sum[4] = {0, 0, 0, 0};
+      for (int dy = 0; dy < factor; ++dy)
+        for (int dx = 0; dx < factor; ++dx) {
+          const std::uint8_t* p = image.pixel(x * factor + dx, y * factor + dy);
+          for (int c = 0; c < 4; ++c) sum[c] += p[c];
+        }
+      std::uint8_t* q = out.pixel(x, y);
+      for (int c = 0; c < 4; ++c) q[c] = static_cast<std::uint8_t>(sum[c] / (factor * factor));
     }
-    ro.position = o.position;
-    ro.heading = o.heading;
-    ro.size = o.size;
-    ro.is_source = o.is_source;
-    s.objects.push_back(ro);
-  }
-  s.goal = world.goal;
-  s.goal_radius = world.goal_radius;
-  s.source = world.source;
-  s.source_radius = world.source_radius;
-  if (!world.characters.empty()) {
-    const glm::vec3 root = world.characters.front().pose->root_position;
-    for (const WorldScene::Character& c : world.characters)
-      if (c.user) s.focus = glm::vec3(c.pose->root_position.x, 0.9f, c.pose->root_position.z);
-    if (s.focus == glm::vec3(0.0f, 0.9f, 0.0f)) s.focus = glm::vec3(root.x, 0.9f, root.z);
-  }
-  return s;
+  return out;
 }
+
+namespace {
+
+constexpr int kScreenshotLeadFrames = kVideoFps;
+
+std::string shell_quote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+// Raw RGBA frames piped into ffmpeg, which writes the MP4 to a temporary name beside the target; the
+// finished file is renamed over the target (atomic, like every file prep writes).
+class VideoWriter {
+ public:
+  VideoWriter(const std::string& path, int width, int height) : path_(path) {
+    partial_ = path + ".partial-" + std::to_string(::getpid()) + ".mp4";
+    const std::string command = "ffmpeg -loglevel error -y -f rawvideo -pix_fmt rgba -s " + std::to_string(width) + "x" +
+                                std::to_string(height) + " -r " + std::to_string(kVideoFps) +
+                                " -i - -an -vf 'scale=trunc(iw/2)*2:trunc(ih/2)*2' -pix_fmt yuv420p -f mp4 " +
+                                shell_quote(partial_);
+    pipe_ = ::popen(command.c_str(), "w");
+    if (!pipe_) throw std::runtime_error(path + ": cannot start ffmpeg");
+  }
+  ~VideoWriter() {
+    if (pipe_) ::pclose(pipe_);
+    std::error_code ec;
+    std::filesystem::remove(partial_, ec);
+  }
+  void add(const render::Image& frame) {
+    if (std::fwrite(frame.rgba.data(), 1, frame.rgba.size(), pipe_) != frame.rgba.size())
+      throw std::runtime_error(path_ + ": ffmpeg stopped reading frames");
+  }
+  void finish() {
+    const int status = ::pclose(pipe_);
+    pipe_ = nullptr;
+    if (status != 0) throw std::runtime_error(path_ + ": ffmpeg failed (exit status " + std::to_string(status) + ")");
+    std::filesystem::rename(partial_, path_);
+  }
+
+ private:
+  std::string path_, partial_;
+  FILE* pipe_ = nullptr;
+};
+
+// Progress of loading and training on stderr: a line when the phase changes and every 2 s.
+std::function<void(const std::string&, float)> progress_printer() {
+  auto last = std::make_shared<std::chrono::steady_clock::time_point>();
+  auto last_status = std::make_shared<std::string>();
+  return [last, last_status](const std::string& status, float progress) {
+    const auto now = std::chrono::steady_clock::now();
+    const std::string kind = status.substr(0, status.find(':'));
+    if (kind == *last_status && now - *last < std::chrono::seconds(2)) return;
+    *last = now;
+    *last_status = kind;
+    std::fprintf(stderr, "prep-demo: %s (%.0f%%)\n", status.c_str(), 100.0 * progress);
+  };
+}
+
+}  // namespace
 
 int run_scenario_headless(const ScenarioRunOptions& o) {
   if (!(o.seconds > 0.0f)) throw std::invalid_argument("--seconds must be positive");
-  const Scenario scenario = load_scenario(o.scenario);
-  const Params params = o.params.empty() ? load_scenario_params(scenario) : load_params(o.params);
-  const std::string cache = default_policy_cache_dir();
-  bool trained = false;
-  if (!o.json) std::cerr << "prep-demo: preparing the motion graph and the controller (policy cache " << cache << ")\n";
-  const auto assets = prepare_world_assets(scenario, params, cache, &trained);
-  World world(scenario, assets);
+  SessionOptions so;
+  so.cache_dir = o.cache_dir;
+  so.background = false;
+  so.on_progress = progress_printer();
+  WorldSession session(so);
+  session.open(o.scenario, o.params.empty() ? std::nullopt : std::optional<Params>(load_params(o.params)));
 
-  const bool drawing = !o.screenshot.empty() || !o.frames_dir.empty() || !o.video.empty();
+  if (o.bench_frames > 0) {
+    render::OsMesaContext context(o.width, o.height);
+    DemoApp app(context, session, nullptr, o.render);
+    app.view.show_panels = o.panels;
+    const BenchResult r = bench_app(app, context, o.bench_frames);
+    std::cout << "prep-demo: scenario " << session.scenario().name << ", " << bench_report(r, o.width, o.height, o.panels, o.bench_frames)
+              << "\n  engine per frame (ms): controller " << app.engine_timings.control.value() << "  motion graph "
+              << app.engine_timings.motion.value() << "  synthesis " << app.engine_timings.synthesis.value()
+              << "  balance " << app.engine_timings.balance.value() << "  total " << app.engine_timings.total.value()
+              << "  (" << app.engine_timings.ticks.value() << " ticks per frame)\n";
+    return 0;
+  }
+
+  std::string video = o.video, strip = o.strip;
+  if (!video.empty() && !ffmpeg_available()) {
+    std::filesystem::path fallback(video);
+    fallback.replace_extension(".png");
+    if (strip.empty()) strip = fallback.string();
+    std::cerr << "prep-demo: ffmpeg is not installed: no video; a strip of frames goes to " << strip << " instead\n";
+    video.clear();
+  }
+  const bool drawing = !o.screenshot.empty() || !o.frames_dir.empty() || !video.empty() || !strip.empty();
   std::unique_ptr<render::OsMesaContext> context;
-  std::unique_ptr<render::Renderer> renderer;
-  render::Camera camera;
-  camera.yaw = 0.9f;
-  camera.pitch = 0.28f;
-  camera.distance = 6.0f;
-  std::string frames_dir = o.frames_dir;
-  if (!o.video.empty() && frames_dir.empty())
-    frames_dir = (std::filesystem::temp_directory_path() / ("prep-frames-" + std::to_string(::getpid()))).string();
+  std::unique_ptr<DemoApp> app;
+  std::unique_ptr<VideoWriter> writer;
   if (drawing) {
     context = std::make_unique<render::OsMesaContext>(o.width, o.height);
-    context->make_current();
-    renderer = std::make_unique<render::Renderer>();
-    if (!frames_dir.empty()) std::filesystem::create_directories(frames_dir);
+    app = std::make_unique<DemoApp>(*context, session, nullptr, o.render);
+    app->view.show_panels = o.panels;
+    if (!o.frames_dir.empty()) std::filesystem::create_directories(o.frames_dir);
+    if (!video.empty()) writer = std::make_unique<VideoWriter>(video, o.width, o.height);
   }
-  const float dt = params.runtime.fixed_dt;
-  const int ticks = static_cast<int>(std::lround(o.seconds / dt));
-  const int frame_every = std::max(1, static_cast<int>(std::lround(1.0f / (30.0f * dt))));  // 30 frames/s
-  int written = 0;
-  auto draw = [&](bool first) {
-    const render::Scene scene = to_render_scene(world.scene());
-    if (first) camera.target = scene.focus;
-    else camera.follow(scene.focus, dt * frame_every);
-    renderer->draw(scene, camera, 0, 0, o.width, o.height);
-    return context->read_pixels();
-  };
-  for (int k = 0; k < ticks; ++k) {
-    world.step();
-    if (drawing && !frames_dir.empty() && k % frame_every == 0) {
+
+  const int frames = std::max(1, static_cast<int>(std::lround(o.seconds * kVideoFps)));
+  const float dt = 1.0f / kVideoFps;
+  // The strip's frames: spread over the run, the first a second in (the character has started moving).
+  std::vector<int> strip_frames;
+  for (int k = 0; k < kStripTiles && !strip.empty(); ++k)
+    strip_frames.push_back(std::min(frames - 1, kVideoFps + (frames - 1 - kVideoFps) * k / (kStripTiles - 1)));
+  const int strip_factor = 3;
+  render::Image strip_image;
+  if (!strip.empty()) strip_image = render::Image(kStripColumns * (o.width / strip_factor), kStripRows * (o.height / strip_factor));
+  int tile = 0, written = 0;
+  for (int f = 0; f < frames; ++f) {
+    const bool strip_frame = tile < static_cast<int>(strip_frames.size()) && strip_frames[static_cast<size_t>(tile)] == f;
+    // The screenshot's last frames are drawn (a second of them: the panels' timings and plots settle).
+    const bool screenshot_frame = !o.screenshot.empty() && f >= frames - kScreenshotLeadFrames;
+    const bool every_frame = !o.frames_dir.empty() || writer;
+    if (!app || !(every_frame || strip_frame || screenshot_frame)) {
+      session.advance(dt);
+      continue;
+    }
+    if (strip_frame) {
+      // Tiles are a third of the frame: no panels, a caption drawn three times as large as the panels' text.
+      const bool panels = app->view.show_panels;
+      app->view.show_panels = false;
+      char caption[160];
+      const World* w = session.world();
+      const WorldCharacter& u = w->characters()[static_cast<size_t>(w->user())];
+      std::snprintf(caption, sizeof caption, "t = %.1f s   alpha %.2f%s%s", w->time() + dt, u.alpha,
+                    u.in_target ? "   " : "", u.in_target ? target_action_name(u.playing) : "");
+      app->view.caption = caption;
+      app->view.caption_scale = static_cast<float>(strip_factor);
+      app->frame(dt);
+      app->view.caption.clear();
+      app->view.show_panels = panels;
+      const render::Image small = downscale(context->read_pixels(), strip_factor);
+      const int x0 = (tile % kStripColumns) * small.width, y0 = (tile / kStripColumns) * small.height;
+      for (int y = 0; y < small.height; ++y)
+        for (int x = 0; x < small.width; ++x)
+          for (int c = 0; c < 4; ++c) strip_image.pixel(x0 + x, y0 + y)[c] = small.pixel(x, y)[c];
+      ++tile;
+      if (!every_frame && !screenshot_frame) continue;
+      app->frame(0.0f);  // the same instant again, as the other frames show it (panels, no caption)
+    } else {
+      app->frame(dt);
+    }
+    const render::Image image = context->read_pixels();
+    if (!o.frames_dir.empty()) {
       char name[64];
-      std::snprintf(name, sizeof name, "/frame_%05d.png", written++);
-      render::write_png(draw(k == 0), frames_dir + name);
+      std::snprintf(name, sizeof name, "/frame_%05d.png", written);
+      render::write_png(image, o.frames_dir + name);
     }
+    if (writer) writer->add(image);
+    ++written;
   }
-  if (!o.screenshot.empty()) render::write_png(draw(written == 0), o.screenshot);
-  if (!o.video.empty()) {
-    const std::string command = "ffmpeg -loglevel error -y -framerate 30 -i '" + frames_dir +
-                                "/frame_%05d.png' -pix_fmt yuv420p '" + o.video + "'";
-    if (std::system("command -v ffmpeg > /dev/null 2>&1") != 0) {
-      std::cerr << "prep-demo: ffmpeg is not installed; the frames are in " << frames_dir << "\n";
-    } else if (std::system(command.c_str()) != 0) {
-      std::cerr << "prep-demo: ffmpeg failed; the frames are in " << frames_dir << "\n";
-    } else if (o.frames_dir.empty()) {
-      std::filesystem::remove_all(frames_dir);
-    }
+  if (!o.screenshot.empty()) {
+    render::write_png(context->read_pixels(), o.screenshot);
+    if (!o.json) std::cout << "prep-demo: wrote " << o.screenshot << "\n";
   }
+  if (writer) {
+    writer->finish();
+    if (!o.json) std::cout << "prep-demo: wrote " << video << " (" << written << " frames at " << kVideoFps << " frames/s)\n";
+  }
+  if (!strip.empty()) {
+    render::write_png(strip_image, strip);
+    if (!o.json) std::cout << "prep-demo: wrote " << strip << " (" << kStripTiles << " frames of the run)\n";
+  }
+  if (!o.frames_dir.empty() && !o.json) std::cout << "prep-demo: wrote " << written << " frames into " << o.frames_dir << "\n";
+  const World& world = *session.world();
   const RunSummary summary = summarize(world);
   if (o.json)
     std::cout << summary_json(summary, world) << "\n";

@@ -29,6 +29,22 @@ class Timings {
   bool frame_seen_ = false;
 };
 
+// An exponential average over about `window` samples (the first sample starts it).
+class RunningAverage {
+ public:
+  explicit RunningAverage(int window = 60) : smoothing_(1.0 / window) {}
+  void add(double x) {
+    value_ = seen_ ? value_ + smoothing_ * (x - value_) : x;
+    seen_ = true;
+  }
+  double value() const { return value_; }
+
+ private:
+  double smoothing_;
+  double value_ = 0.0;
+  bool seen_ = false;
+};
+
 using Clock = std::chrono::steady_clock;
 inline double ms_since(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();

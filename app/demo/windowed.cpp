@@ -3,13 +3,16 @@
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <iostream>
 #include <stdexcept>
 
+#include "app/demo/clip_viewer_app.h"
 #include "app/demo/demo_app.h"
 #include "app/render/gl_context.h"
+#include "app/render/gl_loader.h"
 
 namespace prep::demo {
 
@@ -36,6 +39,8 @@ std::vector<ScriptedKey> parse_key_script(const std::string& text) {
     if (name.size() == 1 && std::isalpha(static_cast<unsigned char>(name[0]))) k.key = GLFW_KEY_A + (name[0] - 'a');
     else if (name.size() == 1 && std::isdigit(static_cast<unsigned char>(name[0]))) k.key = GLFW_KEY_0 + (name[0] - '0');
     else if (name == "space") k.key = GLFW_KEY_SPACE;
+    else if (name == "enter") k.key = GLFW_KEY_ENTER;
+    else if (name == "period") k.key = GLFW_KEY_PERIOD;
     else if (name == "left") k.key = GLFW_KEY_LEFT;
     else if (name == "right") k.key = GLFW_KEY_RIGHT;
     else if (name == "up") k.key = GLFW_KEY_UP;
@@ -49,11 +54,15 @@ std::vector<ScriptedKey> parse_key_script(const std::string& text) {
 
 namespace {
 
+// Press and release within this many pixels is a click; farther is a drag.
+constexpr double kClickSlop = 4.0;
+
 struct WindowState {
-  DemoApp* app = nullptr;
+  WindowApp* app = nullptr;
+  int button = -1;           // held since a press ImGui did not take, else -1
+  double press_x = 0.0, press_y = 0.0;
   double last_x = 0.0, last_y = 0.0;
   bool dragging = false;
-  bool panning = false;
 };
 
 WindowState& state(GLFWwindow* w) { return *static_cast<WindowState*>(glfwGetWindowUserPointer(w)); }
@@ -67,18 +76,30 @@ void on_key(GLFWwindow* w, int key, int, int action, int) {
 void on_mouse_button(GLFWwindow* w, int button, int action, int) {
   WindowState& s = state(w);
   if (action == GLFW_RELEASE) {
-    s.dragging = false;
+    if (button == s.button && !s.dragging) {
+      // Window coordinates -> framebuffer pixels (they differ on high-density displays).
+      int ww = 1, wh = 1, fw = 1, fh = 1;
+      glfwGetWindowSize(w, &ww, &wh);
+      glfwGetFramebufferSize(w, &fw, &fh);
+      const glm::vec2 pixel(static_cast<float>(s.press_x * fw / std::max(ww, 1)), static_cast<float>(s.press_y * fh / std::max(wh, 1)));
+      s.app->on_click(pixel, button == GLFW_MOUSE_BUTTON_RIGHT);
+    }
+    if (button == s.button) s.button = -1, s.dragging = false;
     return;
   }
   if (ImGui::GetCurrentContext() && ImGui::GetIO().WantCaptureMouse) return;
-  s.dragging = true;
-  s.panning = button != GLFW_MOUSE_BUTTON_LEFT;
-  glfwGetCursorPos(w, &s.last_x, &s.last_y);
+  s.button = button;
+  s.dragging = false;
+  glfwGetCursorPos(w, &s.press_x, &s.press_y);
+  s.last_x = s.press_x;
+  s.last_y = s.press_y;
 }
 
 void on_cursor(GLFWwindow* w, double x, double y) {
   WindowState& s = state(w);
-  if (s.dragging) s.app->on_drag(static_cast<float>(x - s.last_x), static_cast<float>(y - s.last_y), s.panning);
+  if (s.button >= 0 && !s.dragging && std::hypot(x - s.press_x, y - s.press_y) > kClickSlop) s.dragging = true;
+  if (s.dragging)
+    s.app->on_drag(static_cast<float>(x - s.last_x), static_cast<float>(y - s.last_y), s.button != GLFW_MOUSE_BUTTON_LEFT);
   s.last_x = x;
   s.last_y = y;
 }
@@ -88,21 +109,16 @@ void on_scroll(GLFWwindow* w, double, double dy) {
   state(w).app->on_scroll(static_cast<float>(dy));
 }
 
-}  // namespace
-
-void run_window(const DemoMotions& motions, const WindowOptions& options) {
-  render::GlfwContext context(options.width, options.height, "prep demo", options.vsync);
-  WindowState window_state;
+void install_input(render::GlfwContext& context, WindowState& window_state) {
   glfwSetWindowUserPointer(context.window(), &window_state);
   glfwSetKeyCallback(context.window(), on_key);
   glfwSetMouseButtonCallback(context.window(), on_mouse_button);
   glfwSetCursorPosCallback(context.window(), on_cursor);
   glfwSetScrollCallback(context.window(), on_scroll);
-  DemoApp app(context, motions, context.window());
-  window_state.app = &app;
-  app.player.select(app.motions(), options.clip);
-  std::cout << "prep-demo: " << gl::describe_context() << "\n";
+}
 
+// The frame loop: events, scripted keys, a frame, the screenshot, the swap.
+void run_loop(render::GlfwContext& context, WindowApp& app, const WindowOptions& options) {
   auto previous = Clock::now();
   for (int frame = 0; !context.should_close() && !app.quit_requested; ++frame) {
     glfwPollEvents();
@@ -128,9 +144,34 @@ void run_window(const DemoMotions& motions, const WindowOptions& options) {
     if (options.quit_after >= 0 && frame >= options.quit_after) app.quit_requested = true;
   }
   // The state the input left behind (scripts/xvfb_smoke.sh checks that its keys arrived).
-  const DemoClip& clip = app.motions().clips[app.player.clip];
-  std::cout << "prep-demo: closing: camera yaw " << std::lround(app.camera.yaw * 180.0f / 3.14159265f) << " deg, clip "
-            << clip.clip.name << (app.player.playing ? " playing" : " paused") << " at " << app.player.time << " s\n";
+  std::cout << "prep-demo: closing: " << app.closing_report() << std::endl;
+}
+
+}  // namespace
+
+void run_demo_window(const std::string& scenario, const std::optional<Params>& params, const WindowOptions& options) {
+  load_scenario(scenario);  // a bad file is named before a window opens
+  render::GlfwContext context(options.width, options.height, "prep demo", options.vsync);
+  WorldSession session;  // background loading and training: the window shows the scene at once
+  session.open(scenario, params);
+  WindowState window_state;
+  install_input(context, window_state);
+  DemoApp app(context, session, context.window());
+  window_state.app = &app;
+  std::cout << "prep-demo: " << gl::describe_context() << "\n";
+  std::cout << "prep-demo: scenario " << session.scenario().name << " (" << scenario << ")" << std::endl;
+  run_loop(context, app, options);
+}
+
+void run_clip_viewer_window(const DemoMotions& motions, const WindowOptions& options) {
+  render::GlfwContext context(options.width, options.height, "prep demo", options.vsync);
+  WindowState window_state;
+  install_input(context, window_state);
+  ClipViewerApp app(context, motions, context.window());
+  window_state.app = &app;
+  app.player.select(app.motions(), options.clip);
+  std::cout << "prep-demo: " << gl::describe_context() << "\n";
+  run_loop(context, app, options);
 }
 
 }  // namespace prep::demo

@@ -1,10 +1,13 @@
-// The windowed demo: a GLFW window, mouse and keyboard camera, the panels.
+// The windowed demo: a GLFW window driving a WindowApp (the scenario demo, or the clip viewer) with the
+// keyboard and the mouse (drag: orbit; right-drag: pan; wheel: zoom; a click: DemoApp::on_click).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "app/demo/motions.h"
+#include "engine/params/params.h"
 
 namespace prep::demo {
 
@@ -14,14 +17,14 @@ struct ScriptedKey {
   int key = 0;
 };
 
-// Parses "FRAME:KEY,FRAME:KEY,..." with KEY a letter, a digit, or one of space, left, right, up, down,
-// escape (e.g. "20:e,40:space"). Throws std::invalid_argument naming the bad item.
+// Parses "FRAME:KEY,FRAME:KEY,..." with KEY a letter, a digit, or one of space, enter, period, left, right,
+// up, down, escape (e.g. "20:e,40:space"). Throws std::invalid_argument naming the bad item.
 std::vector<ScriptedKey> parse_key_script(const std::string& text);
 
 struct WindowOptions {
   int width = 1280;
   int height = 720;
-  int clip = 0;
+  int clip = 0;                 // the clip viewer's first clip
   bool vsync = true;
   std::vector<ScriptedKey> script;
   std::string screenshot;       // written after frame `screenshot_after` (from the back buffer), then quit;
@@ -29,7 +32,10 @@ struct WindowOptions {
   int quit_after = -1;          // frames; -1 runs until the window closes
 };
 
-// Runs the window until closed. Throws render::NoDisplayError when no window can be opened.
-void run_window(const DemoMotions& motions, const WindowOptions& options);
+// Run the window until closed. Throw render::NoDisplayError when no window can be opened.
+// The scenario demo: the scenario opens at once (its motions load and its policy trains in the background).
+void run_demo_window(const std::string& scenario, const std::optional<Params>& params, const WindowOptions& options);
+// The clip viewer.
+void run_clip_viewer_window(const DemoMotions& motions, const WindowOptions& options);
 
 }  // namespace prep::demo

@@ -3,11 +3,16 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "engine/util/error.h"
 #include "engine/util/files.h"
 
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #define STB_IMAGE_WRITE_STATIC
 #include <stb_image_write.h>
+#define STB_IMAGE_IMPLEMENTATION
+#define STB_IMAGE_STATIC
+#define STBI_ONLY_PNG
+#include <stb_image.h>
 
 namespace prep::render {
 
@@ -30,5 +35,17 @@ std::string encode_png(const Image& image) {
 }
 
 void write_png(const Image& image, const std::string& path) { write_file_atomic(path, encode_png(image)); }
+
+Image read_png(const std::string& path) {
+  const std::string bytes = read_file(path);  // InputError naming the file when it cannot be read
+  int w = 0, h = 0, channels = 0;
+  stbi_uc* pixels = stbi_load_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), static_cast<int>(bytes.size()),
+                                          &w, &h, &channels, 4);
+  if (!pixels) throw InputError(path, std::string("not a PNG image (") + stbi_failure_reason() + ")");
+  Image image(w, h);
+  std::memcpy(image.rgba.data(), pixels, image.rgba.size());
+  stbi_image_free(pixels);
+  return image;
+}
 
 }  // namespace prep::render

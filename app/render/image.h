@@ -1,4 +1,4 @@
-// An RGBA8 image, top row first, and writing it as PNG (stb_image_write, atomically).
+// An RGBA8 image, top row first, written as PNG (stb_image_write, atomically) and read back (stb_image).
 #pragma once
 
 #include <cstdint>
@@ -26,5 +26,8 @@ std::string encode_png(const Image& image);
 
 // Encodes and writes through prep::write_file_atomic. Throws std::runtime_error naming the file on failure.
 void write_png(const Image& image, const std::string& path);
+
+// Reads a PNG as RGBA. Throws InputError naming the file when it cannot be read or is not a PNG.
+Image read_png(const std::string& path);
 
 }  // namespace prep::render

@@ -15,6 +15,7 @@ const char* pixel_class_name(PixelClass c) {
     case PixelClass::Ball: return "ball";
     case PixelClass::Goal: return "goal";
     case PixelClass::Source: return "source";
+    case PixelClass::Support: return "support polygon";
     case PixelClass::Dark: return "dark";
     case PixelClass::Unknown: return "unknown";
   }
@@ -57,6 +58,7 @@ PixelClass classify(int r8, int g8, int b8) {
   if (within(hue, 52.0f, 10.0f)) return PixelClass::Ball;
   if (within(hue, 134.0f, 20.0f)) return PixelClass::Goal;
   if (within(hue, 316.0f, 16.0f)) return PixelClass::Source;
+  if (within(hue, 186.0f, 12.0f)) return PixelClass::Support;
   return PixelClass::Unknown;
 }
 

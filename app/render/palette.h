@@ -11,6 +11,8 @@
 //   ball                      0.95 0.84 0.12           ~52°     yellow
 //   goal marker               0.16 0.78 0.30           ~134°    green
 //   source of influence       0.95 0.18 0.72           ~316°    magenta (ring on the floor and rim glow)
+//   support polygon (overlay) 0.10 0.78 0.86           ~186°    cyan, translucent fill, opaque outline
+//   centre of mass (overlay)  white inside the support polygon, red (0.95 0.16 0.12, ~2°) outside
 //   ImGui windows             ImGui's dark style: window background (0.06, 0.06, 0.06, 0.94)
 #pragma once
 
@@ -27,8 +29,11 @@ inline const glm::vec3 kObstacle{0.18f, 0.42f, 0.86f};
 inline const glm::vec3 kBall{0.95f, 0.84f, 0.12f};
 inline const glm::vec3 kGoal{0.16f, 0.78f, 0.30f};
 inline const glm::vec3 kSource{0.95f, 0.18f, 0.72f};
+inline const glm::vec3 kSupport{0.10f, 0.78f, 0.86f};
+inline const glm::vec3 kComInside{1.0f, 1.0f, 1.0f};
+inline const glm::vec3 kComOutside{0.95f, 0.16f, 0.12f};
 
-enum class PixelClass { Sky, Ground, Character, OtherCharacter, Obstacle, Ball, Goal, Source, Dark, Unknown };
+enum class PixelClass { Sky, Ground, Character, OtherCharacter, Obstacle, Ball, Goal, Source, Support, Dark, Unknown };
 const char* pixel_class_name(PixelClass c);
 
 // What a rendered pixel (0-255 RGB) most likely shows, from its hue, saturation and brightness.

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <glm/gtc/quaternion.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <memory>
 #include <optional>
@@ -46,8 +47,17 @@ struct SceneObject {
   bool is_source = false;    // highlighted as the source of influence
 };
 
+// Balance (Sec. 5.3) of one character, drawn on the floor when the demo's toggle is on (overlay.h): the
+// support polygon (convex hull of the feet in contact, counter-clockwise in (x, z)) and the centre of mass.
+struct BalanceView {
+  glm::vec3 com{0.0f};
+  std::vector<glm::vec2> support;  // empty in flight
+  bool com_inside = false;         // the COM's floor projection lies inside the support polygon
+};
+
 struct Scene {
   std::vector<SceneCharacter> characters;
+  std::vector<BalanceView> balance;       // drawn by render::Overlay; empty: not shown
   std::vector<SceneObject> objects;
   std::vector<glm::vec3> goal;            // goal point, or waypoints in order (first = current); empty: none
   float goal_radius = 0.4f;               // drawn as the goal ring (RewardParams::goal_radius)

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <set>
 
-#include "app/demo/demo_app.h"
+#include "app/demo/clip_viewer_app.h"
 #include "app/demo/headless.h"
 #include "app/render/gl_context.h"
 #include "app/render/palette.h"
@@ -67,7 +67,7 @@ TEST_CASE("headless demo frame: character at its projected root and head, floor,
   motions.source = "test";
   motions.clips.push_back({test::standing_clip(at), std::nullopt, -1});
   OsMesaContext context(1280, 720);  // the demo's default size: its panels leave the centre clear
-  demo::DemoApp app(context, motions, nullptr);
+  demo::ClipViewerApp app(context, motions, nullptr);
   app.player.playing = false;
   app.follow = false;
   app.camera = demo::default_camera(demo::clip_scene(motions.clips[0], 0.0f, false));

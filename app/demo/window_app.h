@@ -1,0 +1,37 @@
+// What the window (windowed.cpp) and the headless runs drive: one frame at a time, and the input.
+// Two applications implement it: DemoApp (the scenario demo, demo_app.h) and ClipViewerApp (clips alone).
+#pragma once
+
+#include <string>
+
+#include <glm/vec2.hpp>
+
+#include "app/demo/timings.h"
+
+namespace prep::demo {
+
+class WindowApp {
+ public:
+  virtual ~WindowApp() = default;
+
+  // One frame of dt seconds into the context's framebuffer (the caller ends the frame).
+  virtual void frame(float dt) = 0;
+  // A key press (GLFW key codes), from the window or from a --script.
+  virtual void on_key(int key) = 0;
+  // Mouse input already filtered by ImGui's capture: drag in pixels, scroll in steps, a click (press and
+  // release without a drag) at a framebuffer pixel (x right, y down).
+  virtual void on_drag(float dx, float dy, bool pan) = 0;
+  virtual void on_scroll(float steps) = 0;
+  virtual void on_click(glm::vec2 pixel, bool right) { (void)pixel, (void)right; }
+  // One line printed when the window closes: the state the input left behind (the xvfb smoke test reads it).
+  virtual std::string closing_report() const = 0;
+
+  // Triangles drawn last frame (all passes).
+  virtual int triangles() const = 0;
+
+  bool quit_requested = false;
+  bool sync_stages = false;  // glFinish after each GL stage, so each stage's ms is its own (costs fps)
+  Timings timings;
+};
+
+}  // namespace prep::demo

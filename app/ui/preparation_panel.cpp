@@ -1,0 +1,136 @@
+#include <imgui.h>
+
+#include <cstring>
+#include <string>
+
+#include "app/demo/demo_app.h"
+#include "app/ui/panels.h"
+
+namespace prep::ui {
+
+namespace {
+
+// A marker after a control whose value the trained policy depends on (policy_params_hash).
+void retrains_note() {
+  ImGui::SameLine();
+  ImGui::TextDisabled("*");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("The controller's policy depends on this value: a new one is trained in the background\n"
+                      "(or loaded from the cache) and swapped in when ready; the old one plays meanwhile.");
+}
+
+// Eq. 1 curves: the groups, then per-joint overrides of C_i.
+bool blend_controls(Params& p, const WorldAssets* assets) {
+  bool changed = false;
+  ImGui::TextUnformatted("Eq. 1  w_i = c_i sqrt(1 - (1 - alpha)^C_i)");
+  changed |= ImGui::SliderFloat("C_i upper", &p.blend.C_upper, 0.1f, 4.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+  changed |= ImGui::SliderFloat("C_i lower", &p.blend.C_lower, 0.1f, 4.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+  retrains_note();
+  int method = p.blend.method == "linear" ? 1 : 0;
+  const char* methods[] = {"ours: per-joint curves", "linear: one weight alpha"};
+  if (ImGui::Combo("blend", &method, methods, 2)) {
+    p.blend.method = method == 1 ? "linear" : "ours";
+    changed = true;
+  }
+  retrains_note();
+  if (!assets || !assets->set) return changed;
+  const Skeleton& skeleton = *assets->set->skeleton;
+  const BodyMap& body = assets->set->body;
+  const std::string header = "C_i per joint (" + std::to_string(p.blend.C_override.size()) + " overridden)";
+  if (ImGui::TreeNode("joints", "%s", header.c_str())) {
+    // A scrolled list: the skeleton has dozens of joints, the panel must still fit the screen.
+    ImGui::BeginChild("joint list", ImVec2(0.0f, 8.0f * ImGui::GetFrameHeightWithSpacing()), true);
+    for (int j = 0; j < skeleton.size(); ++j) {
+      const std::string& name = skeleton.joints[static_cast<size_t>(j)].name;
+      const bool upper = j < static_cast<int>(body.upper_body.size()) && body.upper_body[static_cast<size_t>(j)];
+      auto it = p.blend.C_override.find(name);
+      bool on = it != p.blend.C_override.end();
+      ImGui::PushID(j);
+      if (ImGui::Checkbox("##on", &on)) {
+        if (on) p.blend.C_override[name] = upper ? p.blend.C_upper : p.blend.C_lower;
+        else p.blend.C_override.erase(name);
+        changed = true;
+      }
+      ImGui::SameLine();
+      if (on) {
+        ImGui::SetNextItemWidth(140.0f);
+        changed |= ImGui::SliderFloat(name.c_str(), &p.blend.C_override[name], 0.1f, 4.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+      } else {
+        ImGui::Text("%s  (%s: %.2f)", name.c_str(), upper ? "upper" : "lower", upper ? p.blend.C_upper : p.blend.C_lower);
+      }
+      ImGui::PopID();
+    }
+    ImGui::EndChild();
+    ImGui::TreePop();
+  }
+  return changed;
+}
+
+bool balance_controls(Params& p) {
+  bool changed = false;
+  ImGui::TextUnformatted("Eq. 10  E = w_b E_b + w_s E_s + w_m E_m");
+  changed |= ImGui::Checkbox("balance", &p.balance.enabled);
+  ImGui::SameLine();
+  changed |= ImGui::Checkbox("foot IK", &p.ik.enabled);
+  changed |= ImGui::SliderFloat("w_b", &p.balance.w_b, 0.0f, 10.0f, "%.2f");
+  changed |= ImGui::SliderFloat("w_s", &p.balance.w_s, 0.0f, 10.0f, "%.2f");
+  changed |= ImGui::SliderFloat("w_m", &p.balance.w_m, 0.0f, 5.0f, "%.2f");
+  changed |= ImGui::SliderFloat("alpha threshold", &p.balance.alpha_threshold, 0.0f, 1.0f, "%.2f");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("No balance optimization below this level of preparation");
+  changed |= ImGui::SliderInt("max steps", &p.balance.max_steps, 0, 40);
+  changed |= ImGui::SliderFloat("goal radius", &p.reward.goal_radius, 0.1f, 2.0f, "%.2f m");
+  retrains_note();
+  changed |= ImGui::SliderFloat("source radius", &p.reward.source_radius, 0.1f, 2.0f, "%.2f m");
+  retrains_note();
+  return changed;
+}
+
+void file_controls(demo::DemoApp& app) {
+  char path[512];
+  std::strncpy(path, app.params_path.c_str(), sizeof path - 1);
+  path[sizeof path - 1] = '\0';
+  ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x - 100.0f);
+  if (ImGui::InputText("##params file", path, sizeof path)) app.params_path = path;
+  ImGui::SameLine();
+  if (ImGui::Button("Save")) {
+    try {
+      save_params(app.session().params(), app.params_path);  // atomic (temporary file + rename)
+      app.message = "saved the Params to " + app.params_path;
+    } catch (const std::exception& e) {
+      app.message = e.what();
+    }
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("Load")) {
+    try {
+      app.session().set_params(load_params(app.params_path));
+      app.message = "loaded the Params from " + app.params_path;
+    } catch (const std::exception& e) {
+      app.message = e.what();  // names the file and the field
+    }
+  }
+}
+
+}  // namespace
+
+void preparation_panel(demo::DemoApp& app) {
+  demo::WorldSession& s = app.session();
+  place_panel(app, false, "Scenario", kLeftWidth);
+  if (ImGui::Begin("Preparation", nullptr, kPanelFlags)) {
+    ImGui::PushItemWidth(-kLabelWidth);
+    Params p = s.params();
+    bool changed = blend_controls(p, s.assets());
+    ImGui::Separator();
+    changed |= balance_controls(p);
+    if (changed) s.set_params(p);  // at once: World::set_params rebuilds the synthesizer
+    if (s.retraining() || s.policy_stale()) ImGui::ProgressBar(s.progress(), ImVec2(-1.0f, 0.0f), "retraining the policy");
+    ImGui::TextDisabled("* the controller's policy depends on it: retrained");
+    ImGui::Separator();
+    file_controls(app);
+    ImGui::PopItemWidth();
+    app.remember_panel("Preparation");
+  }
+  ImGui::End();
+}
+
+}  // namespace prep::ui
