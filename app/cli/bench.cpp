@@ -1,0 +1,174 @@
+// prep bench: the speed figures of issue 9 (engine/world/benchmark.h measures; this prints): SARSA steps per
+// second, synthesis microseconds per character-frame with and without the balance optimizer (the built-in
+// library and the 43-joint daz43 set), a crowd of 1 to 4,000 characters with controller and full synthesis
+// at 60 Hz on both cores, graph build time, start-up to the first synthesized frame, peak memory.
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "app/cli/command.h"
+#include "engine/library/builtin.h"
+#include "engine/util/files.h"
+#include "engine/world/benchmark.h"
+#include "engine/world/policy_cache.h"
+
+namespace {
+
+// The issue's targets on this 2-core machine.
+constexpr double kCrowdTargetMs = 16.7;       // 1,000 characters, per frame
+constexpr int kCrowdTargetCharacters = 1000;
+constexpr double kSynthesisTargetUs = 10.0;   // per character-frame
+constexpr double kSarsaTarget = 10e6;         // steps per second
+
+struct Options {
+  bool json = false;
+  std::vector<int> crowd{1, 10, 100, 1000, 4000};
+  int frames = 240, warmup = 30, threads = 2;
+  int synthesis_characters = 1000, synthesis_frames = 60;
+  long long sarsa_steps = 20000000;
+  std::string scenario = "assets/scenarios/kick.json";
+  std::string cache;
+};
+
+std::string repo_path(const std::string& p) { return !p.empty() && p.front() == '/' ? p : prep::source_dir() + "/" + p; }
+
+void run(const Options& o) {
+  const std::string cache = o.cache.empty() ? prep::default_policy_cache_dir() : o.cache;
+  auto say = [&](const std::string& s) {
+    if (!o.json) std::cerr << s << std::flush;
+  };
+  nlohmann::json j;
+  j["hardware_threads"] = std::thread::hardware_concurrency();
+
+  // Start-up first, while nothing is loaded: motions, graph, T_p, synthesizer, cached policy, world, one tick.
+  say("start-up ... ");
+  const prep::StartupBenchmark start = prep::benchmark_startup(repo_path("assets/scenarios/obstacles.json"), cache);
+  j["startup_ms"] = start.ms;
+  j["startup_policy_trained"] = start.policy_trained;
+  say(std::to_string(start.ms) + " ms\n");
+
+  const prep::Params paper;  // the paper's configuration: 19,200 states
+  const auto builtin = std::make_shared<const prep::MotionSet>(prep::make_builtin_motion_set(paper));
+  std::vector<std::shared_ptr<const prep::MotionSet>> sets{builtin};
+  for (const char* manifest : {"assets/manifests/daz43.json", "assets/manifests/cmu31.json"}) {
+    try {
+      sets.push_back(std::make_shared<const prep::MotionSet>(prep::load_motion_set(repo_path(manifest), paper)));
+    } catch (const std::exception& e) {
+      std::cerr << "prep bench: skipping " << manifest << ": " << e.what() << "\n";
+    }
+  }
+
+  say("SARSA ... ");
+  const prep::SarsaBenchmark sarsa = prep::benchmark_sarsa(*builtin, paper, o.sarsa_steps);
+  j["sarsa"] = {{"states", sarsa.states},
+                {"actions", sarsa.actions},
+                {"threads", sarsa.threads},
+                {"steps", sarsa.steps},
+                {"seconds", sarsa.seconds},
+                {"steps_per_second", sarsa.steps_per_second},
+                {"steps_per_cpu_second", sarsa.steps_per_cpu_second},
+                {"converged", sarsa.converged}};
+  say(std::to_string(sarsa.steps_per_second / 1e6) + " M steps/s\n");
+
+  j["synthesis"] = nlohmann::json::array();
+  for (const auto& set : sets) {
+    if (set->name == "cmu31") continue;  // the issue asks for the built-in and the 43-joint daz43 set
+    for (bool balance : {true, false}) {
+      say("synthesis " + set->name + (balance ? " with" : " without") + " balance ... ");
+      const prep::SynthesisBenchmark s =
+          prep::benchmark_synthesis(*set, paper, balance, o.synthesis_characters, o.synthesis_frames);
+      j["synthesis"].push_back({{"set", s.set},
+                                {"joints", s.joints},
+                                {"balance", s.balance},
+                                {"characters", s.characters},
+                                {"frames", s.frames},
+                                {"us_per_character_frame", s.us_per_character_frame},
+                                {"balanced_fraction", s.balanced_fraction},
+                                {"mean_balance_steps", s.mean_balance_steps}});
+      say(std::to_string(s.us_per_character_frame) + " us\n");
+    }
+  }
+
+  j["graph_build_ms"] = nlohmann::json::object();
+  for (const auto& set : sets) j["graph_build_ms"][set->name] = prep::benchmark_graph_build_ms(*set, paper, 3);
+
+  const prep::Scenario scenario = prep::load_scenario(repo_path(o.scenario));
+  const auto assets = prep::prepare_world_assets(scenario, prep::load_scenario_params(scenario), cache);
+  j["crowd_scenario"] = scenario.name;
+  j["crowd"] = nlohmann::json::array();
+  double crowd_target_ms = -1.0;
+  for (int n : o.crowd) {
+    say("crowd " + std::to_string(n) + " ... ");
+    const prep::CrowdBenchmark c = prep::benchmark_crowd(scenario, assets, n, o.threads, o.frames, o.warmup, 1);
+    j["crowd"].push_back({{"characters", c.characters},
+                          {"threads", c.threads},
+                          {"frames", c.frames},
+                          {"ms_per_frame", c.ms_per_frame},
+                          {"max_ms_per_frame", c.max_ms_per_frame},
+                          {"us_per_character_frame", 1000.0 * c.ms_per_frame / c.characters},
+                          {"synthesized_fraction", c.synthesized_fraction},
+                          {"balanced_fraction", c.balanced_fraction},
+                          {"kb_per_character", c.kb_per_character}});
+    if (n == kCrowdTargetCharacters) crowd_target_ms = c.ms_per_frame;
+    say(std::to_string(c.ms_per_frame) + " ms/frame\n");
+  }
+  j["peak_memory_mb"] = prep::peak_memory_mb();
+
+  double synthesis_worst = 0.0;
+  for (const auto& s : j["synthesis"]) synthesis_worst = std::max(synthesis_worst, s["us_per_character_frame"].get<double>());
+  j["targets"] = {{"crowd_1000_ms_per_frame", kCrowdTargetMs},
+                  {"synthesis_us_per_character_frame", kSynthesisTargetUs},
+                  {"sarsa_steps_per_second", kSarsaTarget}};
+  j["meets"] = {{"crowd_1000", crowd_target_ms >= 0.0 ? nlohmann::json(crowd_target_ms <= kCrowdTargetMs) : nlohmann::json(nullptr)},
+                {"synthesis", synthesis_worst <= kSynthesisTargetUs},
+                {"sarsa", sarsa.steps_per_second >= kSarsaTarget}};
+  if (o.json) {
+    std::cout << j.dump(2) << "\n";
+    return;
+  }
+  std::printf("\n| figure | value | target |\n|---|---|---|\n");
+  std::printf("| SARSA (%d states x %d actions, %d threads, %lld steps) | %.1f M steps/s (%.1f M per CPU-second) | >= 10 M steps/s |\n",
+              sarsa.states, sarsa.actions, sarsa.threads, static_cast<long long>(sarsa.steps), sarsa.steps_per_second / 1e6,
+              sarsa.steps_per_cpu_second / 1e6);
+  for (const auto& s : j["synthesis"])
+    std::printf("| synthesis, %s (%d joints), %s balance | %.2f us per character-frame | <= 10 us |\n",
+                s["set"].get<std::string>().c_str(), s["joints"].get<int>(), s["balance"].get<bool>() ? "with" : "without",
+                s["us_per_character_frame"].get<double>());
+  for (const auto& c : j["crowd"])
+    std::printf("| crowd of %d (controller + full synthesis, %d threads; balance ran in %.0f%% of frames) | %.2f ms per frame (max %.2f; %.1f us per character; %.0f KB each) | %s |\n",
+                c["characters"].get<int>(), c["threads"].get<int>(), 100.0 * c["balanced_fraction"].get<double>(),
+                c["ms_per_frame"].get<double>(), c["max_ms_per_frame"].get<double>(), c["us_per_character_frame"].get<double>(),
+                c["kb_per_character"].get<double>(),
+                c["characters"].get<int>() == kCrowdTargetCharacters ? "<= 16.7 ms" : "");
+  for (const auto& [name, ms] : j["graph_build_ms"].items())
+    std::printf("| motion graph build, %s | %.1f ms | |\n", name.c_str(), ms.get<double>());
+  std::printf("| start-up to the first synthesized frame (obstacles, %s policy) | %.0f ms | |\n",
+              start.policy_trained ? "freshly trained" : "cached", start.ms);
+  std::printf("| peak memory (getrusage) | %.0f MB | |\n", j["peak_memory_mb"].get<double>());
+}
+
+prep::cli::RegisterCommand bench_command(
+    "bench",
+    "Speed figures: SARSA steps/s, synthesis us per character-frame (with and without balance), a crowd of 1 to "
+    "4,000 characters (ms per frame, both cores), graph build, start-up, peak memory",
+    46, [](CLI::App& app) {
+      auto o = std::make_shared<Options>();
+      app.add_flag("--json", o->json, "Print one JSON object");
+      app.add_option("--crowd", o->crowd, "Crowd sizes (comma-separated, default 1,10,100,1000,4000)")->delimiter(',');
+      app.add_option("--frames", o->frames, "Measured frames per crowd size (default 240 = 4 s)");
+      app.add_option("--warmup", o->warmup, "Frames stepped before measuring (default 30)");
+      app.add_option("--threads", o->threads, "Threads for the crowd (default 2)");
+      app.add_option("--synthesis-characters", o->synthesis_characters, "Characters in the synthesis benchmark (default 1000)");
+      app.add_option("--synthesis-frames", o->synthesis_frames, "Frames in the synthesis benchmark (default 60)");
+      app.add_option("--sarsa-steps", o->sarsa_steps, "SARSA steps at most (default 20,000,000, the paper's)");
+      app.add_option("--scenario", o->scenario, "Scenario the crowd is made from (default assets/scenarios/kick.json)");
+      app.add_option("--policy-cache", o->cache, "Folder of cached policies (default: $PREP_CACHE_DIR or ~/.cache/prep)");
+      app.callback([o] { run(*o); });
+    });
+
+}  // namespace

@@ -1,0 +1,289 @@
+#include "engine/world/benchmark.h"
+
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <condition_variable>
+#include <cstdio>
+#include <functional>
+#include <mutex>
+#include <random>
+#include <thread>
+
+#include "engine/control/action_effects.h"
+#include "engine/control/environment.h"
+#include "engine/control/sarsa.h"
+#include "engine/graph/motion_graph.h"
+#include "engine/synthesis/preparation_run.h"
+#include "engine/synthesis/synthesizer.h"
+#include "engine/util/error.h"
+#include "engine/world/policy_cache.h"
+
+namespace prep {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+constexpr float kPi = 3.14159265358979f;
+
+// Runs job(block) for block = 0 .. blocks-1 on `blocks` threads (the calling thread takes block 0) and
+// returns when all are done; the helper threads persist between calls, so a frame costs one wake-up, not
+// a thread start.
+class FrameWorkers {
+ public:
+  explicit FrameWorkers(int blocks) {
+    for (int b = 1; b < blocks; ++b) threads_.emplace_back([this, b] { loop(b); });
+  }
+  ~FrameWorkers() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stop_ = true;
+      ++generation_;
+    }
+    wake_.notify_all();
+    for (auto& t : threads_) t.join();
+  }
+  template <typename Job>
+  void run(Job&& job) {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      job_ = job;
+      pending_ = static_cast<int>(threads_.size());
+      ++generation_;
+    }
+    wake_.notify_all();
+    job(0);
+    std::unique_lock<std::mutex> lock(mutex_);
+    done_.wait(lock, [&] { return pending_ == 0; });
+  }
+
+ private:
+  void loop(int block) {
+    std::uint64_t seen = 0;
+    for (;;) {
+      std::function<void(int)> job;
+      {
+        std::unique_lock<std::mutex> lock(mutex_);
+        wake_.wait(lock, [&] { return generation_ != seen; });
+        seen = generation_;
+        if (stop_) return;
+        job = job_;
+      }
+      job(block);
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (--pending_ == 0) done_.notify_one();
+      }
+    }
+  }
+  std::vector<std::thread> threads_;
+  std::mutex mutex_;
+  std::condition_variable wake_, done_;
+  std::function<void(int)> job_;
+  std::uint64_t generation_ = 0;
+  int pending_ = 0;
+  bool stop_ = false;
+};
+
+std::string set_source_name(const MotionSet& set) { return set.manifest_path.empty() ? set.name : set.manifest_path; }
+
+}  // namespace
+
+SarsaBenchmark benchmark_sarsa(const MotionSet& set, const Params& params, std::int64_t max_steps) {
+  const ActionTable table = tabulate_action_effects(set, params);
+  const StateSpace states(params.quantization, table.motions);
+  const ActionSpace actions(table.motions, table.alpha_levels);
+  const Environment env(states, actions, table, params.reward);
+  SarsaParams sp = params.sarsa;
+  sp.max_steps = max_steps;
+  TrainingOptions options;
+  options.curve_every_steps = max_steps;  // the curve costs a scan of the table per point: keep it out
+  const TrainingResult r = train_sarsa(env, sp, options);
+  SarsaBenchmark b;
+  b.states = states.size();
+  b.actions = actions.size();
+  b.threads = sp.threads;
+  b.steps = r.steps;
+  b.seconds = r.seconds;
+  b.cpu_seconds = r.cpu_seconds;
+  b.steps_per_second = r.seconds > 0 ? static_cast<double>(r.steps) / r.seconds : 0.0;
+  b.steps_per_cpu_second = r.cpu_seconds > 0 ? static_cast<double>(r.steps) / r.cpu_seconds : 0.0;
+  b.converged = r.converged;
+  return b;
+}
+
+SynthesisBenchmark benchmark_synthesis(const MotionSet& set, const Params& base, bool balance, int characters, int frames) {
+  Params params = base;
+  params.balance.enabled = balance;
+  const int walk = find_cyclic_clip(set, Role::Walk);
+  if (walk < 0) throw InputError(set_source_name(set), "benchmark: the set has no cyclic walk clip");
+  int target = -1;
+  for (size_t i = 0; i < set.clips.size() && target < 0; ++i)
+    if (set.clips[i].target_frame >= 0) target = static_cast<int>(i);
+  if (target < 0) throw InputError(set_source_name(set), "benchmark: the set has no target motion");
+  const MotionClip& tc = set.clips[static_cast<size_t>(target)];
+  const Pose reference = tc.clip.frames[static_cast<size_t>(scan_reference_frame(set, tc, params))];
+
+  // The walk at 60 Hz (every k-th frame of a faster clip), long enough for every phase offset.
+  const MotionClip& wc = set.clips[static_cast<size_t>(walk)];
+  const int every = std::max(1, static_cast<int>(std::lround(wc.clip.fps / 60.0f)));
+  const float dt = static_cast<float>(every) / wc.clip.fps;
+  const int loop = std::max(1, (wc.loop_last - wc.loop_first + 1) / every);
+  LocomotionLoop source(wc);
+  std::vector<Pose> poses;
+  std::vector<FrameContacts> contacts;
+  Pose p;
+  FrameContacts fc{};
+  for (int f = 0; f < (frames + loop) * every; ++f) {
+    source.next(p, fc);
+    if (f % every == 0) poses.push_back(p), contacts.push_back(fc);
+  }
+
+  const Synthesizer synth(set, params);
+  SynthesisScratch scratch = synth.make_scratch();
+  std::vector<SynthesisState> states(static_cast<size_t>(characters));
+  std::vector<Pose> out(static_cast<size_t>(characters), synth.make_pose());
+  std::vector<int> phase(static_cast<size_t>(characters));
+  for (int c = 0; c < characters; ++c) phase[static_cast<size_t>(c)] = (c * 7) % loop;
+  SynthesisReport report;
+  long optimized = 0, steps = 0;
+  const auto t0 = Clock::now();
+  for (int f = 0; f < frames; ++f)
+    for (int c = 0; c < characters; ++c) {
+      const size_t k = static_cast<size_t>(f + phase[static_cast<size_t>(c)]);
+      SynthesisInput in;
+      in.locomotion = &poses[k];
+      in.contacts = contacts[k];
+      in.reference = &reference;
+      // alpha in [0.3, 1]: 0.65 + 0.35 sin, a 4 s period, each character at its own phase.
+      in.alpha = 0.65f + 0.35f * std::sin(2.0f * kPi * (static_cast<float>(f) * dt / 4.0f + 0.618f * static_cast<float>(c)));
+      in.dt = dt;
+      if (!states[static_cast<size_t>(c)].started) {
+        in.has_displacement = true;
+        in.displacement = poses[k + 1].root_position - poses[k].root_position;
+      }
+      synth.step(in, states[static_cast<size_t>(c)], scratch, out[static_cast<size_t>(c)], &report);
+      optimized += report.balanced;
+      steps += report.balance_steps;
+    }
+  const double ms = ms_since(t0);
+  SynthesisBenchmark b;
+  b.set = set.name;
+  b.joints = set.skeleton->size();
+  b.balance = balance;
+  b.characters = characters;
+  b.frames = frames;
+  const double n = static_cast<double>(characters) * frames;
+  b.us_per_character_frame = 1000.0 * ms / n;
+  b.balanced_fraction = static_cast<double>(optimized) / n;
+  b.mean_balance_steps = optimized > 0 ? static_cast<double>(steps) / static_cast<double>(optimized) : 0.0;
+  return b;
+}
+
+CrowdBenchmark benchmark_crowd(const Scenario& scenario, std::shared_ptr<const WorldAssets> assets, int characters,
+                               int threads, int frames, int warmup, std::uint64_t seed) {
+  threads = std::max(1, std::min(threads, characters));
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  const double rss_before = resident_memory_mb();
+  std::vector<std::unique_ptr<World>> worlds;
+  worlds.reserve(static_cast<size_t>(characters));
+  const int user = scenario.user();
+  for (int k = 0; k < characters; ++k) {
+    Scenario s = scenario;
+    ScenarioCharacter& c = s.characters[static_cast<size_t>(user)];
+    c.position += glm::vec2(4.0f * unit(rng) - 2.0f, 4.0f * unit(rng) - 2.0f);
+    c.heading = 2.0f * kPi * unit(rng);
+    const float angle = 2.0f * kPi * unit(rng), distance = 4.0f + 4.0f * unit(rng);
+    const glm::vec2 spot = c.position + distance * glm::vec2(std::sin(angle), std::cos(angle));
+    if (!s.objects.empty()) s.objects[0].position = spot;
+    s.goal.assign(1, spot);
+    worlds.push_back(std::make_unique<World>(s, assets));
+    // Unattended but always synthesizing: no launches (a target clip plays recorded frames, no synthesis).
+    worlds.back()->set_auto(false);
+  }
+  const double rss_after = resident_memory_mb();
+
+  FrameWorkers workers(threads);
+  std::vector<long> synthesized(static_cast<size_t>(threads), 0), balanced(static_cast<size_t>(threads), 0);
+  auto step_block = [&](int block, bool count) {
+    const size_t n = worlds.size(), lo = n * static_cast<size_t>(block) / static_cast<size_t>(threads),
+                 hi = n * static_cast<size_t>(block + 1) / static_cast<size_t>(threads);
+    for (size_t i = lo; i < hi; ++i) {
+      worlds[i]->step();
+      if (count)
+        for (const WorldCharacter& c : worlds[i]->characters()) {
+          synthesized[static_cast<size_t>(block)] += !c.in_target;
+          balanced[static_cast<size_t>(block)] += !c.in_target && c.report.balanced;
+        }
+    }
+  };
+  for (int f = 0; f < warmup; ++f) workers.run([&](int b) { step_block(b, false); });
+  double total = 0.0, worst = 0.0;
+  for (int f = 0; f < frames; ++f) {
+    const auto t0 = Clock::now();
+    workers.run([&](int b) { step_block(b, true); });
+    const double ms = ms_since(t0);
+    total += ms;
+    worst = std::max(worst, ms);
+  }
+  CrowdBenchmark b;
+  b.characters = characters;
+  b.threads = threads;
+  b.frames = frames;
+  b.ms_per_frame = frames > 0 ? total / frames : 0.0;
+  b.max_ms_per_frame = worst;
+  long all = 0, optimized = 0;
+  for (size_t t = 0; t < synthesized.size(); ++t) all += synthesized[t], optimized += balanced[t];
+  const double character_frames = static_cast<double>(characters) * frames;
+  b.synthesized_fraction = frames > 0 ? static_cast<double>(all) / character_frames : 0.0;
+  b.balanced_fraction = frames > 0 ? static_cast<double>(optimized) / character_frames : 0.0;
+  b.kb_per_character = characters > 0 ? 1024.0 * (rss_after - rss_before) / characters : 0.0;
+  return b;
+}
+
+double benchmark_graph_build_ms(const MotionSet& set, const Params& params, int repeats) {
+  double best = 1e300;
+  for (int r = 0; r < std::max(1, repeats); ++r) {
+    const auto t0 = Clock::now();
+    const MotionGraph g = MotionGraph::build(set, params.graph);
+    best = std::min(best, ms_since(t0));
+    if (g.nodes().empty()) break;
+  }
+  return best;
+}
+
+StartupBenchmark benchmark_startup(const std::string& scenario_file, const std::string& cache_dir) {
+  const auto t0 = Clock::now();
+  const Scenario scenario = load_scenario(scenario_file);
+  bool trained = false;
+  const auto assets = prepare_world_assets(scenario, load_scenario_params(scenario), cache_dir, &trained);
+  World world(scenario, assets);
+  world.step();
+  StartupBenchmark b;
+  b.ms = ms_since(t0);
+  b.policy_trained = trained;
+  return b;
+}
+
+double peak_memory_mb() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_maxrss) / 1024.0;  // Linux: kilobytes
+}
+
+double resident_memory_mb() {
+  std::FILE* f = std::fopen("/proc/self/statm", "r");
+  if (!f) return 0.0;
+  long size = 0, resident = 0;
+  const int n = std::fscanf(f, "%ld %ld", &size, &resident);
+  std::fclose(f);
+  return n == 2 ? static_cast<double>(resident) * static_cast<double>(sysconf(_SC_PAGESIZE)) / (1024.0 * 1024.0) : 0.0;
+}
+
+}  // namespace prep

@@ -1,0 +1,58 @@
+// The benchmark functions measure what they say (timings themselves are reported, never asserted).
+#include "engine/world/benchmark.h"
+
+#include <doctest/doctest.h>
+
+#include <memory>
+
+#include "engine/library/builtin.h"
+#include "engine/world/policy_cache.h"
+#include "tests/support/paths.h"
+
+using namespace prep;
+
+TEST_CASE("the synthesis benchmark runs the balance optimizer only when asked, at alpha >= 0.3 throughout") {
+  const MotionSet set = make_builtin_motion_set(Params{});
+  const SynthesisBenchmark with = benchmark_synthesis(set, Params{}, true, 6, 40);
+  const SynthesisBenchmark without = benchmark_synthesis(set, Params{}, false, 6, 40);
+  CHECK(with.joints == set.skeleton->size());
+  CHECK(with.characters == 6);
+  CHECK(with.frames == 40);
+  // Alpha stays in [0.3, 1]: the optimizer runs on every frame with a foot down (walking: all of them).
+  CHECK(with.balanced_fraction > 0.95);
+  CHECK(with.mean_balance_steps >= 1.0);
+  CHECK(with.mean_balance_steps <= Params{}.balance.max_steps);
+  CHECK(without.balanced_fraction == 0.0);
+  CHECK(with.us_per_character_frame > 0.0);
+}
+
+TEST_CASE("the crowd benchmark steps every character of every world, all synthesized, on the threads asked") {
+  const Scenario s = load_scenario(test::repo() + "/assets/scenarios/kick.json");
+  const auto assets = prepare_world_assets(s, load_scenario_params(s), test::tmp_dir() + "/policy-cache");
+  const CrowdBenchmark c = benchmark_crowd(s, assets, 5, 2, 20, 5, 3);
+  CHECK(c.characters == 5);
+  CHECK(c.threads == 2);
+  CHECK(c.frames == 20);
+  CHECK(c.synthesized_fraction == doctest::Approx(1.0));  // launches are off: nobody plays a target clip
+  CHECK(c.ms_per_frame > 0.0);
+  CHECK(c.max_ms_per_frame >= c.ms_per_frame);
+  CHECK(benchmark_crowd(s, assets, 1, 2, 3, 0, 3).threads == 1);  // never more threads than characters
+}
+
+TEST_CASE("the SARSA benchmark trains the paper's 19,200 states for the steps asked") {
+  const MotionSet set = make_builtin_motion_set(Params{});
+  Params p;
+  p.sarsa.convergence_episodes = 100;  // short rounds: the step limit is checked at the end of a round
+  const SarsaBenchmark b = benchmark_sarsa(set, p, 20000);
+  CHECK(b.states == 19200);
+  CHECK(b.actions == 24);
+  CHECK(b.steps >= 20000);
+  CHECK(b.steps < 200000);
+  CHECK(b.steps_per_second > 0.0);
+}
+
+TEST_CASE("peak and resident memory are read from the process") {
+  CHECK(peak_memory_mb() > 1.0);
+  CHECK(resident_memory_mb() > 1.0);
+  CHECK(resident_memory_mb() <= peak_memory_mb() + 1.0);
+}
