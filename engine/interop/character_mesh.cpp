@@ -462,8 +462,12 @@ SkinnedMesh build_character_mesh(const Skeleton& skeleton, const BodyMap& body, 
     const glm::vec3 base = P(body.head);
     const float crown = std::max(rest.sole + H, base.y + 0.08f * H);  // top of the head
     const float* hs = shape.head_half_size;
-    const float half_h = std::max(hs[1] * H, 0.5f * (crown - base.y) + 0.02f * H);
-    const glm::vec3 center(base.x, crown - half_h, base.z + 0.012f * H);
+    // The head has its anthropometric height (2 hs[1] H) and sits on the head joint (the base of the
+    // skull): its centre half a head above the joint, or lower so that its top is the crown of the
+    // stature. Stretching it from the joint to the crown instead makes a tall egg on skeletons whose head
+    // joint sits low (the CMU conversions put it at 0.85 H).
+    const float half_h = hs[1] * H;
+    const glm::vec3 center(base.x, std::min(crown - half_h, base.y + half_h), base.z + 0.012f * H);
     Piece head;
     head.segments = n_body;
     const int rings = 10;
