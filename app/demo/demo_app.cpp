@@ -51,13 +51,22 @@ void DemoApp::reset_camera() {
     at = u.position;
     heading = u.heading;
   }
-  const glm::vec2 ahead = at + kLookAhead * forward_of(heading);
+  // Look toward the source of influence when there is one (the opponent coming, the ball), else along the
+  // way to the goal (the course) -- not along the heading of the moment: a character turning on the spot
+  // would swing the view away from what it prepares for.
+  glm::vec2 toward = session_.goal() - at;
+  if (const World* w = session_.world()) {
+    const WorldCharacter& u = w->characters()[static_cast<size_t>(w->user())];
+    if (u.has_source && glm::length(u.source_object_position - at) > 1.0f) toward = u.source_object_position - at;
+  }
+  if (glm::length(toward) > 1.0f) heading = std::atan2(toward.x, toward.y);
+  const glm::vec2 ahead = look_point();
   view.camera = render::Camera{};
   view.camera.target = glm::vec3(ahead.x, 0.9f, ahead.y);
   // Behind the character and over its left shoulder, high enough to see the course past it.
   view.camera.yaw = heading + kPi - 0.42f;
-  view.camera.pitch = 0.33f;
-  view.camera.distance = 6.0f;
+  view.camera.pitch = 0.36f;
+  view.camera.distance = 7.0f;
 }
 
 glm::vec2 DemoApp::camera_forward() const {
@@ -73,12 +82,33 @@ void DemoApp::update_camera(float dt) {
     camera_world_ = w;
     if (w) reset_camera();
   }
-  if (!view.follow || !w || scene_.characters.empty()) return;
-  const int user = w->user();
-  const render::SceneCharacter& c = scene_.characters[static_cast<size_t>(user)];
-  const float heading = heading_of(c.joint_rotations[0]);
-  const glm::vec2 ahead = glm::vec2(c.joint_positions[0].x, c.joint_positions[0].z) + kLookAhead * forward_of(heading);
+  if (!view.follow || !w) return;
+  const glm::vec2 ahead = look_point();
   view.camera.follow(glm::vec3(ahead.x, 0.0f, ahead.y), dt, 0.5f);
+}
+
+glm::vec2 DemoApp::look_point() const {
+  // The engine's last tick (the drawing lags it by at most a tick: nothing the smoothing would show).
+  if (const World* w = session_.world()) {
+    const WorldCharacter& u = w->characters()[static_cast<size_t>(w->user())];
+    glm::vec2 ahead = kLookAhead * forward_of(u.heading);
+    // Part of the way to the source, so that the character and what it prepares for share the view.
+    if (u.has_source) {
+      const glm::vec2 d = u.source_object_position - u.position;
+      const float len = glm::length(d);
+      if (len > 1e-3f) ahead = std::min(kSourceShare * len, kMaxLookAhead) * (d / len);
+    }
+    return u.position + ahead;
+  }
+  const Scenario& s = session_.scenario();
+  if (s.user() < 0) return glm::vec2(0.0f);
+  const ScenarioCharacter& u = s.characters[static_cast<size_t>(s.user())];
+  return u.position + kLookAhead * forward_of(u.heading);
+}
+
+void DemoApp::skip_frame(float dt) {
+  session_.advance(dt);
+  update_camera(dt);
 }
 
 void DemoApp::frame(float dt) {

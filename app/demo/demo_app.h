@@ -47,13 +47,18 @@ struct EngineTimings {
 class DemoApp final : public WindowApp {
  public:
   static constexpr float kGoalStep = 1.0f;        // m per key press
-  static constexpr float kLookAhead = 1.2f;       // m ahead of the character the followed camera aims at
+  static constexpr float kLookAhead = 1.2f;       // m ahead of the character the followed camera aims at ...
+  static constexpr float kSourceShare = 0.25f;     // ... or this share of the way to its source of influence,
+  static constexpr float kMaxLookAhead = 1.8f;    // at most this far (m)
 
   // window: the GLFW window for ImGui's input, or nullptr headless. The session must outlive the app.
   DemoApp(render::GlContext& context, WorldSession& session, GLFWwindow* window, const render::RenderSettings& settings = {});
   ~DemoApp() override;
 
   void frame(float dt) override;  // advances the session by dt, then draws
+  // A frame that is not drawn (headless runs draw only the frames they keep): the session advances and
+  // the camera follows as in a drawn frame.
+  void skip_frame(float dt);
   void on_key(int key) override;
   void on_drag(float dx, float dy, bool pan) override;
   void on_scroll(float steps) override;
@@ -91,6 +96,7 @@ class DemoApp final : public WindowApp {
   void update_camera(float dt);
   void draw_panels();
   glm::vec2 camera_forward() const;  // unit, on the floor
+  glm::vec2 look_point() const;      // where the followed camera aims, on the floor
 
   render::GlContext& context_;
   WorldSession& session_;

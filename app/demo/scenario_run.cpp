@@ -156,7 +156,8 @@ int run_scenario_headless(const ScenarioRunOptions& o) {
     const bool screenshot_frame = !o.screenshot.empty() && f >= frames - kScreenshotLeadFrames;
     const bool every_frame = !o.frames_dir.empty() || writer;
     if (!app || !(every_frame || strip_frame || screenshot_frame)) {
-      session.advance(dt);
+      if (app) app->skip_frame(dt);
+      else session.advance(dt);
       continue;
     }
     if (strip_frame) {

@@ -1,0 +1,79 @@
+// The windowed demo under a virtual display (scripts/xvfb_smoke.sh): it starts, key presses move the
+// World's goal (the script checks what the demo prints on closing), and the screenshot taken from the
+// window shows the scene in the middle and the panels in their columns. Skipped without xvfb-run.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <string>
+
+#include "app/render/image.h"
+#include "app/render/palette.h"
+#include "app/ui/panels.h"
+#include "tests/support/paths.h"
+
+using namespace prep;
+using render::palette::PixelClass;
+
+namespace {
+
+// <build>/tests/prep_tests_render -> <build>
+std::string build_dir() {
+  std::error_code ec;
+  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  return ec ? std::string() : self.parent_path().parent_path().string();
+}
+
+struct Counts {
+  std::map<PixelClass, int> classes;
+  int dark = 0, total = 0;
+};
+
+Counts count(const render::Image& image, int x0, int y0, int x1, int y1) {
+  Counts c;
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x) {
+      const std::uint8_t* p = image.pixel(x, y);
+      c.classes[render::palette::classify(p[0], p[1], p[2])]++;
+      c.dark += std::max({p[0], p[1], p[2]}) < 90;
+      ++c.total;
+    }
+  return c;
+}
+
+}  // namespace
+
+TEST_CASE("windowed demo under Xvfb: keys move the goal, the window shows the scene and the panels") {
+  const std::string build = build_dir();
+  if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0 || build.empty() ||
+      !std::filesystem::exists(build + "/prep-demo")) {
+    MESSAGE("skipped: xvfb-run or " << build << "/prep-demo missing");
+    return;
+  }
+  std::filesystem::create_directories(test::tmp_dir());
+  const std::string png = test::tmp_dir() + "/xvfb_demo.png", log = test::tmp_dir() + "/xvfb_demo.log";
+  const std::string command = test::repo() + "/scripts/xvfb_smoke.sh '" + build + "' '" + png + "' > '" + log + "' 2>&1";
+  const int status = std::system(command.c_str());
+  INFO("log: " << log);
+  REQUIRE(status == 0);  // the script checked that the keys moved the goal and that a 1280x720 PNG came out
+  const render::Image image = render::read_png(png);
+  REQUIRE(image.width == 1280);
+  REQUIRE(image.height == 720);
+  // The middle, between the panel columns: floor, sky and the character.
+  const int left = static_cast<int>(ui::kMargin + ui::kLeftWidth) + 10;
+  const int right = image.width - static_cast<int>(ui::kMargin + ui::kRightWidth) - 10;
+  Counts middle = count(image, left, 0, right, image.height);
+  CHECK(middle.classes[PixelClass::Ground] > middle.total / 4);
+  CHECK(middle.classes[PixelClass::Sky] > 2000);
+  CHECK(middle.classes[PixelClass::Character] > 300);
+  // The columns: the top of each is a panel (dark, ImGui's window background), not the sky.
+  Counts left_panel = count(image, static_cast<int>(ui::kMargin) + 4, 30, static_cast<int>(ui::kMargin + ui::kLeftWidth) - 4, 200);
+  Counts right_panel = count(image, image.width - static_cast<int>(ui::kMargin + ui::kRightWidth) + 4, 30,
+                                   image.width - static_cast<int>(ui::kMargin) - 4, 200);
+  CHECK(left_panel.dark > left_panel.total / 2);
+  CHECK(right_panel.dark > right_panel.total / 2);
+  CHECK(left_panel.classes[PixelClass::Sky] < left_panel.total / 100);  // a few anti-aliased text pixels at most
+  CHECK(right_panel.classes[PixelClass::Sky] < right_panel.total / 100);
+}
