@@ -19,27 +19,35 @@ float distance_to_segment(glm::vec2 p, glm::vec2 a, glm::vec2 b) {
   return glm::length(p - (a + ab * t));
 }
 
-}  // namespace
-
-std::vector<glm::vec2> convex_hull(std::vector<glm::vec2> points) {
-  std::sort(points.begin(), points.end(), [](glm::vec2 a, glm::vec2 b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
-  points.erase(std::unique(points.begin(), points.end(),
-                           [](glm::vec2 a, glm::vec2 b) { return glm::length(a - b) <= kEpsilon; }),
-               points.end());
-  if (points.size() < 3) return points;
-  // Andrew's monotone chain: lower hull left to right, then upper hull right to left; collinear points
-  // are dropped (cross <= 0 pops), which keeps the hull strictly convex.
-  std::vector<glm::vec2> hull(2 * points.size());
+// Andrew's monotone chain over points[0, n) (sorted in place) into `hull` (resized; no allocation once it
+// has the capacity).
+void hull_into(glm::vec2* points, size_t n, std::vector<glm::vec2>& hull) {
+  std::sort(points, points + n, [](glm::vec2 a, glm::vec2 b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
+  n = static_cast<size_t>(std::unique(points, points + n, [](glm::vec2 a, glm::vec2 b) { return glm::length(a - b) <= kEpsilon; }) - points);
+  if (n < 3) {
+    hull.assign(points, points + n);
+    return;
+  }
+  // Lower hull left to right, then upper hull right to left; collinear points are dropped (cross <= 0
+  // pops), which keeps the hull strictly convex.
+  hull.resize(2 * n);
   size_t k = 0;
-  for (size_t i = 0; i < points.size(); ++i) {
+  for (size_t i = 0; i < n; ++i) {
     while (k >= 2 && cross(hull[k - 2], hull[k - 1], points[i]) <= 0.0f) --k;
     hull[k++] = points[i];
   }
-  for (size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {
+  for (size_t i = n - 1, lower = k + 1; i-- > 0;) {
     while (k >= lower && cross(hull[k - 2], hull[k - 1], points[i]) <= 0.0f) --k;
     hull[k++] = points[i];
   }
   hull.resize(k - 1);  // the last point repeats the first
+}
+
+}  // namespace
+
+std::vector<glm::vec2> convex_hull(std::vector<glm::vec2> points) {
+  std::vector<glm::vec2> hull;
+  hull_into(points.data(), points.size(), hull);
   return hull;
 }
 
@@ -77,8 +85,10 @@ glm::vec2 SupportPolygon::center() const {
   return mean + sum / (3.0f * area2);
 }
 
-SupportPolygon support_polygon(const FootPoints& feet, const FrameContacts& contacts, const ContactParams& params) {
-  std::vector<glm::vec2> points;
+void support_polygon(const FootPoints& feet, const FrameContacts& contacts, const ContactParams& params,
+                     SupportPolygon& polygon) {
+  glm::vec2 points[8];
+  size_t n = 0;
   const float half = 0.5f * params.foot_width;
   for (size_t s = 0; s < 2; ++s) {
     const FootContact& c = contacts[s];
@@ -92,12 +102,16 @@ SupportPolygon support_polygon(const FootPoints& feet, const FrameContacts& cont
     const glm::vec2 back = c.heel ? heel : toe - along * half;
     const glm::vec2 front = c.toe ? toe : heel + along * half;
     for (glm::vec2 end : {back, front}) {
-      points.push_back(end + side * half);
-      points.push_back(end - side * half);
+      points[n++] = end + side * half;
+      points[n++] = end - side * half;
     }
   }
+  hull_into(points, n, polygon.hull);
+}
+
+SupportPolygon support_polygon(const FootPoints& feet, const FrameContacts& contacts, const ContactParams& params) {
   SupportPolygon polygon;
-  polygon.hull = convex_hull(std::move(points));
+  support_polygon(feet, contacts, params, polygon);
   return polygon;
 }
 

@@ -21,6 +21,9 @@ struct SupportPolygon {
 // contacts.foot_width (a heel-only or toe-only contact gives a small patch, never a bare line), so that
 // single support has an area.
 SupportPolygon support_polygon(const FootPoints& feet, const FrameContacts& contacts, const ContactParams& params);
+// The same into an existing polygon, reusing its storage (no allocation once its hull has the capacity).
+void support_polygon(const FootPoints& feet, const FrameContacts& contacts, const ContactParams& params,
+                     SupportPolygon& polygon);
 
 // Convex hull of points (Andrew's monotone chain), counter-clockwise.
 std::vector<glm::vec2> convex_hull(std::vector<glm::vec2> points);

@@ -31,7 +31,9 @@ template <class F> void fields(IkParams& p, F&& f) {
 template <class F> void fields(BalanceParams& p, F&& f) {
   f("w_b", p.w_b); f("w_s", p.w_s); f("w_m", p.w_m); f("max_steps", p.max_steps);
   f("alpha_threshold", p.alpha_threshold); f("step_size", p.step_size); f("tolerance", p.tolerance);
-  f("max_halvings", p.max_halvings); f("norm_smoothing", p.norm_smoothing); f("enabled", p.enabled);
+  f("max_halvings", p.max_halvings); f("norm_smoothing", p.norm_smoothing);
+  f("max_part_shift", p.max_part_shift); f("max_shift_speed", p.max_shift_speed); f("warm_start", p.warm_start);
+  f("enabled", p.enabled);
 }
 template <class F> void fields(QuantizationParams& p, F&& f) {
   f("d_step", p.d_step); f("d_g_bins", p.d_g_bins); f("d_i_bins", p.d_i_bins);

@@ -77,6 +77,12 @@ struct BalanceParams {
   float tolerance = 1e-5f;        // stop when the cost improves by less than this (a local optimum)
   int max_halvings = 4;           // backtracking line search: halve the step at most this often per step
   float norm_smoothing = 1e-3f;   // m: |x| is taken as sqrt(|x|^2 + e^2) - e so the cost is differentiable at 0
+  // Trust region of the correction (balance.h explains why Eq. 6-10 need one): no body-part centroid moves
+  // further than this from the blended posture (m), nor faster than max_shift_speed from where the
+  // previous frame's correction left it (m/s). A value <= 0 removes the bound.
+  float max_part_shift = 0.06f;
+  float max_shift_speed = 0.3f;
+  bool warm_start = true;         // start each frame's descent from the previous frame's correction
   bool enabled = true;
 };
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 #include "engine/motion/kinematics.h"
 
@@ -12,13 +13,6 @@ namespace {
 // |x| smoothed near 0 (BalanceParams::norm_smoothing) so that C is differentiable where a term vanishes,
 // e.g. the style term at the start of the optimization.
 inline float smooth_norm(float squared, float e) { return std::sqrt(squared + e * e) - e; }
-
-// Rotation by the rotation vector v (axis * angle).
-inline glm::quat exp_map(glm::vec3 v) {
-  const float angle = glm::length(v);
-  if (angle < 1e-9f) return glm::quat(1, 0, 0, 0);
-  return glm::angleAxis(angle, v / angle);
-}
 
 inline glm::vec3 distal_point(const Skeleton& skeleton, const BalanceModel::Part& part,
                               const std::vector<glm::vec3>& positions, const std::vector<glm::quat>& rotations) {
@@ -31,14 +25,14 @@ inline glm::vec3 distal_point(const Skeleton& skeleton, const BalanceModel::Part
 void BalanceScratch::resize(int joints, int parts) {
   const size_t n = static_cast<size_t>(joints), m = static_cast<size_t>(parts);
   for (auto* v : {&positions, &trial_positions, &joint_point_gradient, &end_point_gradient, &subtree_force,
-                  &subtree_torque, &joint_gradient, &subtree_moment}) {
+                  &subtree_torque, &joint_gradient, &subtree_moment, &angular, &linear}) {
     v->resize(n);
   }
   subtree_mass.resize(n);
   rotations.resize(n);
   trial_rotations.resize(n);
-  for (auto* v : {&centroids, &trial_centroids, &part_gradient}) v->resize(m);
-  trial.rotations.resize(n);
+  for (auto* v : {&centroids, &trial_centroids, &start_centroids, &part_gradient}) v->resize(m);
+  for (auto* v : {&base, &local, &trial_local, &offset}) v->resize(static_cast<size_t>(kMaxOptimizedJoints));
 }
 
 BalanceModel BalanceModel::build(const Skeleton& skeleton, const BodyMap& body, const MassModel& mass) {
@@ -52,16 +46,67 @@ BalanceModel BalanceModel::build(const Skeleton& skeleton, const BodyMap& body, 
     }
     model.parts.push_back({s.proximal, s.distal, s.distal_is_end_site, s.com_fraction, s.mass_fraction / total});
   }
-  for (int j = 0; j < skeleton.size(); ++j) {
-    if (j < static_cast<int>(body.upper_body.size()) && body.upper_body[static_cast<size_t>(j)]) {
-      model.optimized.push_back(j);
-    }
-  }
-  model.joint_mass.assign(static_cast<size_t>(skeleton.size()), 0.0f);
-  model.end_mass.assign(static_cast<size_t>(skeleton.size()), 0.0f);
+  const size_t n = static_cast<size_t>(skeleton.size());
+  model.joint_mass.assign(n, 0.0f);
+  model.end_mass.assign(n, 0.0f);
+  // Which joints the mass table reads: a part's proximal and distal joints (an End Site also needs its
+  // joint's rotation).
+  std::vector<char> read(n, 0), end_read(n, 0);
   for (const Part& part : model.parts) {
     model.joint_mass[static_cast<size_t>(part.proximal)] += part.mass * (1.0f - part.f);
     (part.distal_is_end_site ? model.end_mass : model.joint_mass)[static_cast<size_t>(part.distal)] += part.mass * part.f;
+    read[static_cast<size_t>(part.proximal)] = 1;
+    (part.distal_is_end_site ? end_read : read)[static_cast<size_t>(part.distal)] = 1;
+  }
+  // carries[j]: a rotation at j moves a point the mass table reads (a read joint strictly below j, or j's
+  // read End Site). needed[j]: j lies on the way to such a point (j itself read, or carries).
+  std::vector<char> carries(n, 0), needed(n, 0);
+  for (size_t j = n; j-- > 0;) {
+    carries[j] = carries[j] || end_read[j];
+    needed[j] = carries[j] || read[j];
+    const int parent = skeleton.joints[j].parent;
+    if (parent >= 0 && needed[j]) carries[static_cast<size_t>(parent)] = 1;
+  }
+  model.end_point.assign(end_read.begin(), end_read.end());
+  model.optimized_index.assign(n, -1);
+  for (size_t j = 0; j < n; ++j) {
+    if (j < body.upper_body.size() && body.upper_body[j] && carries[j]) {
+      model.optimized_index[j] = static_cast<int>(model.optimized.size());
+      model.optimized.push_back(static_cast<int>(j));
+    }
+  }
+  if (model.optimized.size() > static_cast<size_t>(kMaxOptimizedJoints)) {
+    throw std::invalid_argument("balance: " + std::to_string(model.optimized.size()) +
+                                " upper-body joints to optimize, more than kMaxOptimizedJoints (" +
+                                std::to_string(kMaxOptimizedJoints) + ")");
+  }
+  // Moved joints: below an optimized joint (or one itself) and needed.
+  std::vector<char> moved(n, 0);
+  model.is_moved.assign(n, 0);
+  for (size_t j = 0; j < n; ++j) {
+    const int parent = skeleton.joints[j].parent;
+    const bool below = model.optimized_index[j] >= 0 || (parent >= 0 && moved[static_cast<size_t>(parent)]);
+    moved[j] = below;
+    if (below && needed[j]) {
+      model.moved.push_back(static_cast<int>(j));
+      model.is_moved[j] = 1;
+    }
+  }
+  for (size_t i = 0; i < model.parts.size(); ++i) {
+    const Part& part = model.parts[i];
+    // A part moves if either of its points does: the distal point when its joint is moved (an End Site
+    // turns with its joint's rotation), the proximal one likewise, except that an optimized joint's own
+    // position does not move when it turns (but its End Site does).
+    const auto point_moves = [&](int j, bool end_site) {
+      const size_t jj = static_cast<size_t>(j);
+      if (!model.is_moved[jj]) return false;
+      if (end_site) return true;
+      const int parent = skeleton.joints[jj].parent;
+      return parent >= 0 && model.is_moved[static_cast<size_t>(parent)];
+    };
+    if (point_moves(part.proximal, false) || point_moves(part.distal, part.distal_is_end_site)) {
+      model.moved_parts.push_back(static_cast<int>(i));
+    }
   }
   return model;
 }
@@ -181,24 +226,264 @@ glm::vec3 com_response(const BalanceModel& model, const BalanceScratch& s) {
   return v;
 }
 
+namespace {
+
+// Forward kinematics of the moved joints only (the rest of `positions` / `rotations` is the posture's and
+// does not change), with the optimized joints' local rotations taken from `local`.
+void moved_kinematics(const Skeleton& skeleton, const BalanceModel& model, const Pose& pose, const glm::quat* local,
+                      std::vector<glm::vec3>& positions, std::vector<glm::quat>& rotations) {
+  for (int j : model.moved) {
+    const size_t jj = static_cast<size_t>(j);
+    const Joint& joint = skeleton.joints[jj];
+    const size_t p = static_cast<size_t>(joint.parent);  // never the root: the root is not upper body
+    const int k = model.optimized_index[jj];
+    const glm::quat& q = k >= 0 ? local[static_cast<size_t>(k)] : pose.rotations[jj];
+    rotations[jj] = rotations[p] * q;
+    positions[jj] = positions[p] + rotations[p] * joint.offset;
+  }
+}
+
+void moved_centroids(const Skeleton& skeleton, const BalanceModel& model, const std::vector<glm::vec3>& positions,
+                     const std::vector<glm::quat>& rotations, glm::vec3* out) {
+  for (int i : model.moved_parts) {
+    const BalanceModel::Part& part = model.parts[static_cast<size_t>(i)];
+    const glm::vec3 p = positions[static_cast<size_t>(part.proximal)];
+    out[i] = p + part.f * (distal_point(skeleton, part, positions, rotations) - p);
+  }
+}
+
+// Eq. 6-10 when only the moved parts differ from a posture whose cost over the other parts is `fixed`
+// (style, smoothness); the COM takes every part.
+// The COM from the parts that never move (fixed_com, their weighted sum) and the moved parts.
+inline glm::vec3 moved_com(const BalanceModel& model, const glm::vec3& fixed_com, const glm::vec3* centroids) {
+  glm::vec3 com = fixed_com;
+  for (int i : model.moved_parts) com += model.parts[static_cast<size_t>(i)].mass * centroids[static_cast<size_t>(i)];
+  return com;
+}
+
+BalanceCost moved_cost(const BalanceModel& model, const BalanceParams& params, const BalanceTargets& targets,
+                       const glm::vec3* centroids, const BalanceCost& fixed, const glm::vec3& fixed_com) {
+  const float e = params.norm_smoothing;
+  const float inv_n = 1.0f / static_cast<float>(model.parts.size());
+  BalanceCost cost;
+  const glm::vec3 com = moved_com(model, fixed_com, centroids);
+  const glm::vec2 d(com.x - targets.support_centre.x, com.z - targets.support_centre.y);
+  const float d2 = glm::dot(d, d);
+  cost.com_distance = std::sqrt(d2);
+  cost.balance = smooth_norm(d2, e);  // Eq. 6
+  cost.style = fixed.style;
+  cost.smooth = fixed.smooth;
+  const bool history = targets.previous && targets.before_previous;
+  for (int i : model.moved_parts) {
+    const size_t ii = static_cast<size_t>(i);
+    const glm::vec3 st = centroids[ii] - targets.style[ii];
+    cost.style += smooth_norm(glm::dot(st, st), e) * inv_n;  // Eq. 7
+    if (history) {
+      const glm::vec3 acc = centroids[ii] - 2.0f * targets.previous[ii] + targets.before_previous[ii];
+      cost.smooth += smooth_norm(glm::dot(acc, acc), e) * inv_n;  // Eq. 8-9
+    }
+  }
+  cost.total = params.w_b * cost.balance + params.w_s * cost.style + params.w_m * cost.smooth;  // Eq. 10
+  return cost;
+}
+
+// balance_gradient restricted to what the optimizer reads: the optimized joints' gradients and the
+// subtree COM moments com_response uses. Only moved joints and parts enter (the others' points do not move
+// with an optimized joint, so they add nothing below it).
+void moved_gradient(const Skeleton& skeleton, const BalanceModel& model, const BalanceParams& params,
+                    const BalanceTargets& targets, const glm::vec3& com, BalanceScratch& s) {
+  const float e = params.norm_smoothing;
+  const float inv_n = 1.0f / static_cast<float>(model.parts.size());
+  const glm::vec3* c = s.centroids.data();
+  const glm::vec2 d(com.x - targets.support_centre.x, com.z - targets.support_centre.y);
+  const glm::vec2 u = d / std::sqrt(glm::dot(d, d) + e * e);
+  const glm::vec3 balance_dir = params.w_b * glm::vec3(u.x, 0.0f, u.y);
+  const bool history = targets.previous && targets.before_previous;
+  for (int j : model.moved) {
+    const size_t jj = static_cast<size_t>(j);
+    s.joint_point_gradient[jj] = s.end_point_gradient[jj] = s.subtree_force[jj] = s.subtree_torque[jj] =
+        s.subtree_moment[jj] = glm::vec3(0.0f);
+    s.subtree_mass[jj] = 0.0f;
+  }
+  for (int i : model.moved_parts) {
+    const size_t ii = static_cast<size_t>(i);
+    const BalanceModel::Part& part = model.parts[ii];
+    glm::vec3 g = part.mass * balance_dir;
+    const glm::vec3 st = c[ii] - targets.style[ii];
+    g += (params.w_s * inv_n / std::sqrt(glm::dot(st, st) + e * e)) * st;
+    if (history) {
+      const glm::vec3 acc = c[ii] - 2.0f * targets.previous[ii] + targets.before_previous[ii];
+      g += (params.w_m * inv_n / std::sqrt(glm::dot(acc, acc) + e * e)) * acc;
+    }
+    const size_t prox = static_cast<size_t>(part.proximal), dist = static_cast<size_t>(part.distal);
+    if (model.is_moved[prox]) s.joint_point_gradient[prox] += (1.0f - part.f) * g;
+    if (model.is_moved[dist]) (part.distal_is_end_site ? s.end_point_gradient : s.joint_point_gradient)[dist] += part.f * g;
+  }
+  // One backward pass (children come after their parents): a joint's subtree sums are complete when it is
+  // reached; its own End Site joins first, as it turns with the joint.
+  for (size_t m = model.moved.size(); m-- > 0;) {
+    const size_t j = static_cast<size_t>(model.moved[m]);
+    const glm::vec3 x = s.positions[j];
+    if (model.end_point[j]) {
+      const glm::vec3 ge = s.end_point_gradient[j];
+      const glm::vec3 end = x + s.rotations[j] * skeleton.joints[j].end_site;
+      s.subtree_force[j] += ge;
+      s.subtree_torque[j] += glm::cross(end, ge);
+      s.subtree_mass[j] += model.end_mass[j];
+      s.subtree_moment[j] += model.end_mass[j] * end;
+    }
+    s.joint_gradient[j] = s.subtree_torque[j] - glm::cross(x, s.subtree_force[j]);
+    s.subtree_moment[j] -= s.subtree_mass[j] * x;  // now Q_j - M_j x_j (for com_response)
+    const size_t p = static_cast<size_t>(skeleton.joints[j].parent);
+    if (!model.is_moved[p]) continue;
+    const glm::vec3 gj = s.joint_point_gradient[j];
+    s.subtree_force[p] += s.subtree_force[j] + gj;
+    s.subtree_torque[p] += s.subtree_torque[j] + glm::cross(x, gj);
+    const float mass_here = s.subtree_mass[j] + model.joint_mass[j];
+    s.subtree_mass[p] += mass_here;
+    s.subtree_moment[p] += s.subtree_moment[j] + mass_here * x;
+  }
+}
+
+// Rotation by about the rotation vector v for the small v of a descent step: (1, v/2) normalized (first
+// order in |v|; the line search judges the step by the true cost, so any such retraction serves, and this
+// one needs no trigonometry).
+inline glm::quat small_rotation(glm::vec3 v) { return glm::normalize(glm::quat(1.0f, 0.5f * v.x, 0.5f * v.y, 0.5f * v.z)); }
+
+// The largest first-order speed of a moved part's centroid per unit step along -joint_gradient: a forward
+// pass carries each joint frame's angular velocity (the sum of the steps of the optimized joints above it)
+// and its origin's linear velocity, and a centroid mixes the velocities of its two points. Used to keep the
+// first trial of a line search inside the trust region (one pass instead of wasted trial postures).
+float step_motion(const Skeleton& skeleton, const BalanceModel& model, BalanceScratch& s) {
+  for (int j : model.moved) {
+    const size_t jj = static_cast<size_t>(j);
+    const size_t p = static_cast<size_t>(skeleton.joints[jj].parent);
+    glm::vec3 w(0.0f), v(0.0f);
+    if (model.is_moved[p]) {
+      w = s.angular[p];
+      v = s.linear[p] + glm::cross(w, s.positions[jj] - s.positions[p]);
+    }
+    if (model.optimized_index[jj] >= 0) w -= s.joint_gradient[jj];
+    s.angular[jj] = w;
+    s.linear[jj] = v;
+  }
+  const auto point_speed = [&](int j, bool end_site) {
+    const size_t jj = static_cast<size_t>(j);
+    if (!model.is_moved[jj]) return glm::vec3(0.0f);
+    if (!end_site) return s.linear[jj];
+    return s.linear[jj] + glm::cross(s.angular[jj], s.rotations[jj] * skeleton.joints[jj].end_site);
+  };
+  float largest2 = 0.0f;
+  for (int i : model.moved_parts) {
+    const BalanceModel::Part& part = model.parts[static_cast<size_t>(i)];
+    const glm::vec3 v = (1.0f - part.f) * point_speed(part.proximal, false) + part.f * point_speed(part.distal, part.distal_is_end_site);
+    largest2 = std::max(largest2, glm::dot(v, v));
+  }
+  return std::sqrt(largest2);
+}
+
+// The largest distance between the moved parts' centroids in a and b.
+float largest_move(const BalanceModel& model, const glm::vec3* a, const glm::vec3* b) {
+  float largest2 = 0.0f;
+  for (int i : model.moved_parts) {
+    const glm::vec3 v = a[static_cast<size_t>(i)] - b[static_cast<size_t>(i)];
+    largest2 = std::max(largest2, glm::dot(v, v));
+  }
+  return std::sqrt(largest2);
+}
+
+inline float bound_or_infinity(float bound) { return bound > 0.0f ? bound : INFINITY; }
+
+}  // namespace
+
+void optimized_balance_gradient(const Skeleton& skeleton, const BalanceModel& model, const BalanceParams& params,
+                                const BalanceTargets& targets, BalanceScratch& scratch) {
+  moved_gradient(skeleton, model, params, targets, model_center_of_mass(model, scratch.centroids.data()), scratch);
+}
+
 BalanceResult optimize_balance(const Skeleton& skeleton, const BalanceModel& model, const BalanceParams& params,
-                               const BalanceTargets& targets, Pose& pose, BalanceScratch& s) {
+                               const BalanceTargets& targets, Pose& pose, BalanceScratch& s,
+                               BalanceCorrection* memory, float dt, bool kinematics_given) {
   BalanceResult result;
-  forward_kinematics(skeleton, pose, s.positions, &s.rotations);
+  result.optimized = true;
+  const size_t k_count = model.optimized.size();
+  if (!kinematics_given) forward_kinematics(skeleton, pose, s.positions, &s.rotations);
   part_centroids(skeleton, model, s.positions, s.rotations, s.centroids.data());
   BalanceCost current = balance_cost(model, params, targets, s.centroids.data());
   result.before = current;
   result.after = current;
-  result.optimized = true;
+  // The cost of the parts that never move (their style and smoothness terms stay as they are).
+  BalanceCost fixed = current;
+  {
+    const float e = params.norm_smoothing;
+    const float inv_n = 1.0f / static_cast<float>(model.parts.size());
+    const bool history = targets.previous && targets.before_previous;
+    for (int i : model.moved_parts) {
+      const size_t ii = static_cast<size_t>(i);
+      const glm::vec3 st = s.centroids[ii] - targets.style[ii];
+      fixed.style -= smooth_norm(glm::dot(st, st), e) * inv_n;
+      if (history) {
+        const glm::vec3 acc = s.centroids[ii] - 2.0f * targets.previous[ii] + targets.before_previous[ii];
+        fixed.smooth -= smooth_norm(glm::dot(acc, acc), e) * inv_n;
+      }
+    }
+  }
+  glm::vec3 fixed_com = model_center_of_mass(model, s.centroids.data());
+  for (int i : model.moved_parts) fixed_com -= model.parts[static_cast<size_t>(i)].mass * s.centroids[static_cast<size_t>(i)];
+  for (size_t k = 0; k < k_count; ++k) {
+    s.base[k] = pose.rotations[static_cast<size_t>(model.optimized[k])];
+    s.local[k] = s.base[k];
+  }
+  s.trial_positions = s.positions;  // same sizes: no allocation; the joints that never move stay valid
+  s.trial_rotations = s.rotations;
+  s.trial_centroids = s.centroids;
+  const float max_shift = bound_or_infinity(params.max_part_shift);
+  const float max_change = bound_or_infinity(params.max_shift_speed) * dt;
+  const float before_distance = result.before.com_distance;
+  // Within a tenth of the tighter bound of the trust region's edge, stop: steps that small change nothing
+  // visible (each step goes 95% of the way to the edge, so one step usually gets there).
+  const float tighter = std::min(max_shift, max_change);
+  const float edge = std::isfinite(tighter) ? 0.1f * tighter : 1e-6f;
 
-  s.trial.root_position = pose.root_position;
+  // Warm start from the previous frame's correction, or the largest fraction of it that is acceptable.
+  if (params.warm_start && memory && memory->valid) {
+    for (size_t k = 0; k < k_count; ++k) s.offset[k] = memory->offset[k];
+    for (int attempt = 0; attempt < 3; ++attempt) {
+      if (attempt > 0) {  // half of the rotation (same axis, half the angle): normalize(1 + q) for q.w >= 0
+        for (size_t k = 0; k < k_count; ++k) {
+          s.offset[k] = glm::normalize(glm::quat(s.offset[k].w + 1.0f, s.offset[k].x, s.offset[k].y, s.offset[k].z));
+        }
+      }
+      for (size_t k = 0; k < k_count; ++k) s.trial_local[k] = glm::normalize(s.offset[k] * s.base[k]);
+      moved_kinematics(skeleton, model, pose, s.trial_local.data(), s.trial_positions, s.trial_rotations);
+      moved_centroids(skeleton, model, s.trial_positions, s.trial_rotations, s.trial_centroids.data());
+      const BalanceCost c = moved_cost(model, params, targets, s.trial_centroids.data(), fixed, fixed_com);
+      if (c.total < current.total && c.com_distance <= before_distance &&
+          largest_move(model, s.trial_centroids.data(), targets.style) <= max_shift) {
+        s.local.swap(s.trial_local);
+        s.positions.swap(s.trial_positions);
+        s.rotations.swap(s.trial_rotations);
+        s.centroids.swap(s.trial_centroids);
+        current = c;
+        result.warm_started = true;
+        break;
+      }
+    }
+    if (!result.warm_started) {  // the trial buffers hold a rejected posture: back to the blended one
+      s.trial_positions = s.positions;
+      s.trial_rotations = s.rotations;
+      s.trial_centroids = s.centroids;
+    }
+  }
+  s.start_centroids = s.centroids;
+
   for (int iteration = 0; iteration < params.max_steps; ++iteration) {
-    balance_gradient(skeleton, model, params, targets, s);
+    const glm::vec3 com = moved_com(model, fixed_com, s.centroids.data());
+    moved_gradient(skeleton, model, params, targets, com, s);
     // First trial step: where the linearized COM comes closest to the support centre along the descent
     // direction, capped at step_size; then backtracking halves it.
     float step = params.step_size;
     {
-      const glm::vec3 com = model_center_of_mass(model, s.centroids.data());
       const glm::vec2 d(com.x - targets.support_centre.x, com.z - targets.support_centre.y);
       const glm::vec3 r = com_response(model, s);
       const glm::vec2 v(r.x, r.z);
@@ -208,29 +493,43 @@ BalanceResult optimize_balance(const Skeleton& skeleton, const BalanceModel& mod
         if (best > 0.0f) step = std::min(best, params.step_size);
       }
     }
+    // Room left in the trust region: a step may move a centroid this far from where it is now (by the
+    // triangle inequality this keeps both bounds).
+    const float room = std::min(max_shift - largest_move(model, s.centroids.data(), targets.style),
+                                max_change - largest_move(model, s.centroids.data(), s.start_centroids.data()));
+    if (!(room > edge)) break;  // at the edge of the trust region: what is left is not worth a step
+    // Keep the first trial inside it: the centroids' first-order motion per unit step (step_motion).
+    const float motion = step_motion(skeleton, model, s);
+    if (motion * step > room) step = 0.95f * room / motion;
     bool accepted = false;
     BalanceCost trial_cost;
-    for (int halving = 0; halving <= params.max_halvings; ++halving, step *= 0.5f) {
-      s.trial.rotations = pose.rotations;  // same size: no allocation
-      for (int j : model.optimized) {
-        const size_t jj = static_cast<size_t>(j);
-        const int parent = skeleton.joints[jj].parent;
-        const glm::quat parent_world = parent >= 0 ? s.rotations[static_cast<size_t>(parent)] : glm::quat(1, 0, 0, 0);
+    for (int shortening = 0; shortening <= params.max_halvings; ++shortening) {
+      for (size_t k = 0; k < k_count; ++k) {
+        const size_t j = static_cast<size_t>(model.optimized[k]);
+        const glm::quat& parent_world = s.rotations[static_cast<size_t>(skeleton.joints[j].parent)];
         // A world-frame rotation vector at joint j, expressed in its parent's frame, premultiplies its local rotation.
-        const glm::vec3 delta = glm::inverse(parent_world) * (-step * s.joint_gradient[jj]);
-        s.trial.rotations[jj] = glm::normalize(exp_map(delta) * pose.rotations[jj]);
+        const glm::vec3 delta = glm::conjugate(parent_world) * (-step * s.joint_gradient[j]);
+        s.trial_local[k] = glm::normalize(small_rotation(delta) * s.local[k]);
       }
-      forward_kinematics(skeleton, s.trial, s.trial_positions, &s.trial_rotations);
-      part_centroids(skeleton, model, s.trial_positions, s.trial_rotations, s.trial_centroids.data());
-      trial_cost = balance_cost(model, params, targets, s.trial_centroids.data());
-      if (trial_cost.total < current.total && trial_cost.com_distance <= result.before.com_distance) {
+      moved_kinematics(skeleton, model, pose, s.trial_local.data(), s.trial_positions, s.trial_rotations);
+      moved_centroids(skeleton, model, s.trial_positions, s.trial_rotations, s.trial_centroids.data());
+      const float moved = largest_move(model, s.trial_centroids.data(), s.centroids.data());
+      if (moved > room) {
+        // Outside the trust region: shorten the step to (nearly) its edge rather than halving blindly;
+        // centroids move about linearly with the step.
+        step *= 0.95f * room / moved;
+        continue;
+      }
+      trial_cost = moved_cost(model, params, targets, s.trial_centroids.data(), fixed, fixed_com);
+      if (trial_cost.total < current.total && trial_cost.com_distance <= before_distance) {
         accepted = true;
         break;
       }
+      step *= 0.5f;  // backtracking
     }
-    if (!accepted) break;  // a local optimum: no descent step helps
+    if (!accepted) break;  // a local optimum (within the trust region): no descent step helps
     const float improvement = current.total - trial_cost.total;
-    pose.rotations.swap(s.trial.rotations);
+    s.local.swap(s.trial_local);
     s.positions.swap(s.trial_positions);
     s.rotations.swap(s.trial_rotations);
     s.centroids.swap(s.trial_centroids);
@@ -238,6 +537,15 @@ BalanceResult optimize_balance(const Skeleton& skeleton, const BalanceModel& mod
     ++result.steps;
     if (improvement < params.tolerance) break;
   }
+  for (size_t k = 0; k < k_count; ++k) pose.rotations[static_cast<size_t>(model.optimized[k])] = s.local[k];
+  if (memory) {
+    for (size_t k = 0; k < k_count; ++k) {
+      const glm::quat q = glm::normalize(s.local[k] * glm::conjugate(s.base[k]));
+      memory->offset[k] = q.w < 0.0f ? -q : q;
+    }
+    memory->valid = true;
+  }
+  result.largest_shift = largest_move(model, s.centroids.data(), targets.style);
   result.after = current;
   return result;
 }

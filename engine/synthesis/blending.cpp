@@ -38,6 +38,16 @@ BlendCurves make_blend_curves(const Skeleton& skeleton, const BodyMap& body, con
                                   "\" must be positive");
     }
   }
+  for (int i = 0; i < n; ++i) {
+    const float C = curves.C[static_cast<size_t>(i)], c = curves.c[static_cast<size_t>(i)];
+    size_t k = 0;
+    while (k < curves.curve_C.size() && !(curves.curve_C[k] == C && curves.curve_c[k] == c)) ++k;
+    if (k == curves.curve_C.size()) {
+      curves.curve_C.push_back(C);
+      curves.curve_c.push_back(c);
+    }
+    curves.curve_of_joint.push_back(static_cast<int>(k));
+  }
   return curves;
 }
 
@@ -52,7 +62,13 @@ void blend_weights(const BlendCurves& curves, float alpha, float* weights) {
     std::fill(weights, weights + n, std::clamp(alpha, 0.0f, 1.0f));
     return;
   }
-  for (size_t i = 0; i < n; ++i) weights[i] = blend_weight(alpha, curves.C[i], curves.c[i]);
+  if (curves.curve_of_joint.size() != n || curves.curve_C.size() > 8) {  // curves built by hand, or many shapes
+    for (size_t i = 0; i < n; ++i) weights[i] = blend_weight(alpha, curves.C[i], curves.c[i]);
+    return;
+  }
+  float per_curve[8];
+  for (size_t k = 0; k < curves.curve_C.size(); ++k) per_curve[k] = blend_weight(alpha, curves.curve_C[k], curves.curve_c[k]);
+  for (size_t i = 0; i < n; ++i) weights[i] = per_curve[curves.curve_of_joint[i]];
 }
 
 glm::quat blend_rotation(const glm::quat& from, const glm::quat& to, float w) {
@@ -65,9 +81,13 @@ glm::quat blend_rotation(const glm::quat& from, const glm::quat& to, float w) {
     d = -d;
   }
   if (d > 0.9995f) return glm::normalize(from + (b - from) * w);  // nearly equal: lerp is exact enough
+  // slerp = (sin((1 - w) theta) from + sin(w theta) b) / sin theta, with sin((1 - w) theta) expanded as
+  // sin theta cos(w theta) - cos theta sin(w theta): one acos and one sincos per joint.
   const float theta = std::acos(d);
-  const float s = std::sin(theta);
-  return (std::sin((1.0f - w) * theta) / s) * from + (std::sin(w * theta) / s) * b;
+  const float s = std::sqrt(1.0f - d * d);
+  const float sw = std::sin(w * theta), cw = std::cos(w * theta);
+  const float to_weight = sw / s;
+  return (cw - d * to_weight) * from + to_weight * b;
 }
 
 void blend_joint_rotations(const Pose& locomotion, const Pose& reference, const float* weights, Pose& out) {

@@ -18,6 +18,10 @@ struct BlendCurves {
   std::vector<float> c;  // per joint
   bool linear = false;   // the traditional blend of Fig. 6 (top): w_i = alpha for every joint
   int root = 0;          // the root joint (its weight is w_r of Eq. 3-4)
+  // The distinct (C_i, c_i) pairs and each joint's pair: most joints share one of two curves, so Eq. 1 is
+  // evaluated once per curve rather than once per joint (same values).
+  std::vector<float> curve_C, curve_c;
+  std::vector<int> curve_of_joint;
 };
 
 // Defaults from BlendParams: upper-body joints (body.upper_body) take C_upper, every other joint (root,

@@ -121,7 +121,15 @@ void apply_foot_ik(const Skeleton& skeleton, const BodyMap& body, const IkParams
     if (!contact.toe) plant.toe_planted = false;
 
     heel[side] = wp[static_cast<size_t>(leg.ankle)];
-    const glm::vec3 heel_to_toe = toe_tip(skeleton, leg, wp, wr) - heel[side];
+    glm::vec3 heel_to_toe = toe_tip(skeleton, leg, wp, wr) - heel[side];
+    const bool toe_is_child = leg.toe >= 0 && leg.toe_tip_joint == leg.toe &&
+                              skeleton.joints[static_cast<size_t>(leg.toe)].parent == leg.ankle;
+    if (!(plant.heel_planted && plant.toe_planted && toe_is_child)) plant.toe_held = false;
+    if (plant.toe_held) {
+      const Joint& toe = skeleton.joints[static_cast<size_t>(leg.toe)];
+      pose.rotations[static_cast<size_t>(leg.toe)] = plant.toe_local;
+      heel_to_toe = wr[static_cast<size_t>(leg.ankle)] * (toe.offset + plant.toe_local * toe.end_site);
+    }
     foot_world[side] = wr[static_cast<size_t>(leg.ankle)];
     foot_vector[side] = heel_to_toe;
     if (plant.heel_planted) {
@@ -178,6 +186,12 @@ void apply_foot_ik(const Skeleton& skeleton, const BodyMap& body, const IkParams
     if (pinned[side].toe && !plant.toe_planted) {
       plant.toe_planted = true;
       plant.toe_anchor = reached + foot_vector[side];
+    }
+    const bool toe_is_child = leg.toe >= 0 && leg.toe_tip_joint == leg.toe &&
+                              skeleton.joints[static_cast<size_t>(leg.toe)].parent == leg.ankle;
+    if (plant.heel_planted && plant.toe_planted && toe_is_child && !plant.toe_held) {
+      plant.toe_held = true;
+      plant.toe_local = pose.rotations[static_cast<size_t>(leg.toe)];
     }
     if (plant.heel_planted || plant.toe_planted) {
       plant.offset = reached - (heel[side] + body_shift);

@@ -29,6 +29,11 @@ struct FootPlant {
   glm::vec3 toe_anchor{0.0f};   // world position where the toe tip was planted
   glm::vec3 offset{0.0f};       // last IK correction of the ankle (solved - unsolved), faded out after lift-off
   float fade = 0.0f;            // 1 while planted, falls to 0 over ik.release_s after lift-off
+  // While the foot is flat (heel and toe planted) the toe joint keeps the bend it had when the foot became
+  // flat: blending keeps turning it (fastest near alpha = 1, where Eq. 1's curves are steepest), and a toe
+  // joint that bends under a flat foot would drag the planted toe tip along the floor.
+  bool toe_held = false;
+  glm::quat toe_local{1.0f, 0.0f, 0.0f, 0.0f};
 };
 using FootPlants = std::array<FootPlant, 2>;  // [kLeft], [kRight]
 

@@ -6,6 +6,27 @@
 #include "engine/synthesis/trajectory.h"
 
 namespace prep {
+namespace {
+
+// Forward kinematics of the listed joints only (in skeleton order, each listed with its ancestors): the same
+// arithmetic as forward_kinematics, for the leg chains the foot IK reads.
+void chain_kinematics(const Skeleton& skeleton, const std::vector<int>& joints, const Pose& pose,
+                      std::vector<glm::vec3>& positions, std::vector<glm::quat>& rotations) {
+  for (int j : joints) {
+    const size_t i = static_cast<size_t>(j);
+    const int parent = skeleton.joints[i].parent;
+    if (parent < 0) {
+      rotations[i] = pose.rotations[i];
+      positions[i] = pose.root_position;
+      continue;
+    }
+    const size_t p = static_cast<size_t>(parent);
+    positions[i] = positions[p] + rotations[p] * skeleton.joints[i].offset;
+    rotations[i] = rotations[p] * pose.rotations[i];
+  }
+}
+
+}  // namespace
 
 Synthesizer::Synthesizer(std::shared_ptr<const Skeleton> skeleton, BodyMap body, const MassModel& mass,
                          const Params& params)
@@ -16,6 +37,15 @@ Synthesizer::Synthesizer(std::shared_ptr<const Skeleton> skeleton, BodyMap body,
     throw std::invalid_argument("Synthesizer: the mass model has more body parts than kMaxBodyParts");
   }
   curves_ = make_blend_curves(*skeleton_, body_, params_.blend);
+  std::vector<char> leg(static_cast<size_t>(skeleton_->size()), 0);
+  for (const LegChain& chain : body_.legs) {
+    for (int j : {chain.hip, chain.knee, chain.ankle, chain.toe, chain.toe_tip_joint}) {
+      for (; j >= 0; j = skeleton_->joints[static_cast<size_t>(j)].parent) leg[static_cast<size_t>(j)] = 1;
+    }
+  }
+  for (int j = 0; j < skeleton_->size(); ++j) {
+    if (leg[static_cast<size_t>(j)]) leg_joints_.push_back(j);
+  }
 }
 
 void Synthesizer::set_params(const Params& params) {
@@ -63,8 +93,9 @@ void Synthesizer::stage_trajectory(const SynthesisInput& in, SynthesisState& sta
 }
 
 void Synthesizer::stage_ik(const SynthesisInput& in, SynthesisState& state, SynthesisScratch& s, Pose& out) const {
-  // The locomotion's own heel and toe speeds decide which flagged points the foot stands on.
-  forward_kinematics(*skeleton_, *in.locomotion, s.positions, &s.rotations);
+  // The locomotion's own heel and toe speeds decide which flagged points the foot stands on. (The IK reads
+  // only the legs and their ancestors: forward kinematics of those, then of everything once solved.)
+  chain_kinematics(*skeleton_, leg_joints_, *in.locomotion, s.positions, s.rotations);
   const FootPoints loco_feet = foot_points(*skeleton_, body_, s.positions, s.rotations);
   std::array<float, 2> heel_speed{0.0f, 0.0f}, toe_speed{0.0f, 0.0f};
   if (state.history > 0 && in.dt > 0.0f) {
@@ -77,8 +108,11 @@ void Synthesizer::stage_ik(const SynthesisInput& in, SynthesisState& state, Synt
   state.previous_locomotion_feet = loco_feet;
   s.pinned = select_pinned_points(in.contacts, heel_speed, toe_speed, params_.ik);
 
-  forward_kinematics(*skeleton_, out, s.positions, &s.rotations);
-  if (!params_.ik.enabled) return;
+  if (!params_.ik.enabled) {
+    forward_kinematics(*skeleton_, out, s.positions, &s.rotations);
+    return;
+  }
+  chain_kinematics(*skeleton_, leg_joints_, out, s.positions, s.rotations);
   apply_foot_ik(*skeleton_, body_, params_.ik, s.pinned, in.dt, out, s.positions, s.rotations, state.feet, state.root_drop);
   forward_kinematics(*skeleton_, out, s.positions, &s.rotations);
 }
@@ -87,7 +121,7 @@ void Synthesizer::stage_balance(const SynthesisInput& in, SynthesisState& state,
                                 SynthesisReport* report) const {
   // Needs s.positions / s.rotations = forward kinematics of `out` (stage_ik leaves them so).
   const FootPoints feet = foot_points(*skeleton_, body_, s.positions, s.rotations);
-  s.support = support_polygon(feet, in.contacts, params_.contacts);
+  support_polygon(feet, in.contacts, params_.contacts, s.support);
   const size_t n_parts = balance_model_.parts.size();
   part_centroids(*skeleton_, balance_model_, s.positions, s.rotations, s.style.data());
 
@@ -105,10 +139,13 @@ void Synthesizer::stage_balance(const SynthesisInput& in, SynthesisState& state,
   BalanceResult result;
   const glm::vec3* final_centroids = s.style.data();
   if (optimize) {
-    result = optimize_balance(*skeleton_, balance_model_, bp, targets, out, s.balance);
+    s.balance.positions.swap(s.positions);  // the IK stage's forward kinematics of `out` (same sizes)
+    s.balance.rotations.swap(s.rotations);
+    result = optimize_balance(*skeleton_, balance_model_, bp, targets, out, s.balance, &state.correction, in.dt, true);
     final_centroids = s.balance.centroids.data();
-  } else if (report && has_support) {
-    result.before = result.after = balance_cost(balance_model_, bp, targets, s.style.data());
+  } else {
+    state.correction.valid = false;  // the next optimized frame starts from its blended posture
+    if (report && has_support) result.before = result.after = balance_cost(balance_model_, bp, targets, s.style.data());
   }
 
   if (report) {
@@ -117,6 +154,8 @@ void Synthesizer::stage_balance(const SynthesisInput& in, SynthesisState& state,
     report->has_support = has_support;
     report->balanced = result.optimized;
     report->balance_steps = result.steps;
+    report->warm_started = result.warm_started;
+    report->balance_shift = result.largest_shift;
     report->feet = feet;
     report->pinned = s.pinned;
     if (has_support) {

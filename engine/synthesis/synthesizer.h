@@ -6,8 +6,8 @@
 // -> balance optimization (Eq. 6-10, balance.h).
 //
 // Memory: a Synthesizer holds what depends only on the skeleton and Params (shared by every character on
-// that skeleton). A SynthesisState is one character's memory between frames: plain data, no heap, under a
-// kilobyte. A SynthesisScratch holds working buffers (one per thread). step() allocates nothing, except
+// that skeleton). A SynthesisState is one character's memory between frames: plain data, no heap, about
+// 1.2 kilobytes. A SynthesisScratch holds working buffers (one per thread). step() allocates nothing, except
 // the support polygon's small hull vector (support_polygon.h returns it by value).
 #pragma once
 
@@ -42,6 +42,7 @@ struct SynthesisState {
   int history = 0;                           // optimized frames remembered (0-2), for Eq. 8-9
   std::array<glm::vec3, kMaxBodyParts> previous{};         // body-part centroids at t-1
   std::array<glm::vec3, kMaxBodyParts> before_previous{};  // ... at t-2
+  BalanceCorrection correction;              // the last optimized frame's correction (warm start)
 };
 
 struct SynthesisInput {
@@ -62,7 +63,9 @@ struct SynthesisReport {
   float w_root = 0.0f;
   bool has_support = false;           // some foot in contact
   bool balanced = false;              // the optimizer ran
+  bool warm_started = false;          // ... starting from the previous frame's correction
   int balance_steps = 0;
+  float balance_shift = 0.0f;         // the largest move of a body-part centroid by the optimizer (m)
   float com_distance_before = 0.0f;   // |COM - support centre| on the floor before optimization (m)
   float com_distance_after = 0.0f;    // ... after
   bool com_inside_before = false;     // COM inside the support polygon before / after optimization
@@ -116,6 +119,7 @@ class Synthesizer {
   Params params_;
   BlendCurves curves_;
   BalanceModel balance_model_;
+  std::vector<int> leg_joints_;  // the leg chains (hip to toe tip) and their ancestors, in skeleton order
 };
 
 }  // namespace prep

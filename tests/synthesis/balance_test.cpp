@@ -2,10 +2,12 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
 #include "engine/motion/kinematics.h"
+#include "engine/motion/support_polygon.h"
 #include "test_rig.h"
 
 namespace prep {
@@ -102,15 +104,27 @@ TEST_CASE("the analytic gradient equals finite differences") {
   CHECK(largest > 0.05f);  // the check above compared real, non-zero derivatives
 }
 
-TEST_CASE("the optimizer lowers the cost, brings the COM toward the support centre and moves only the upper body") {
-  Fixture f;
-  std::mt19937 rng(5);
-  BalanceParams params;
+// A posture whose COM is well ahead of the feet: the trunk leaned forward, both arms out in front.
+Pose leaning_pose(const Fixture& f) {
   Pose pose(f.n);
   pose.root_position = {0.0f, 0.95f, 0.0f};
-  // Lean the trunk forward and put both arms out in front: the COM moves ahead of the feet.
   pose.rotations[static_cast<size_t>(f.skeleton->find("abdomen"))] = glm::angleAxis(0.35f, glm::vec3(1, 0, 0));
   for (const char* s : {"lShldr", "rShldr"}) pose.rotations[static_cast<size_t>(f.skeleton->find(s))] = glm::angleAxis(s[0] == 'l' ? -1.4f : 1.4f, glm::vec3(0, 1, 0));
+  return pose;
+}
+
+float largest_shift(const std::vector<glm::vec3>& a, const std::vector<glm::vec3>& b) {
+  float largest = 0.0f;
+  for (size_t i = 0; i < a.size(); ++i) largest = std::max(largest, glm::length(a[i] - b[i]));
+  return largest;
+}
+
+TEST_CASE("the optimizer lowers the cost, brings the COM toward the support centre and moves only the upper body") {
+  Fixture f;
+  BalanceParams params;
+  params.max_part_shift = 0.0f;  // no trust region: the descent alone (the bounds have their own test)
+  params.max_shift_speed = 0.0f;
+  Pose pose = leaning_pose(f);
   const std::vector<glm::vec3> style = centroids_of(f, pose);
   BalanceTargets targets;
   targets.support_centre = {0.0f, 0.05f};  // between the feet
@@ -124,6 +138,8 @@ TEST_CASE("the optimizer lowers the cost, brings the COM toward the support cent
   CHECK(result.steps <= params.max_steps);
   CHECK(result.after.total < result.before.total);
   CHECK(result.after.com_distance < 0.7f * result.before.com_distance);
+  // The reported cost is the cost of the posture returned.
+  CHECK(balance_cost(f.model, params, targets, centroids_of(f, pose).data()).total == doctest::Approx(result.after.total).epsilon(1e-4));
   for (int j = 0; j < f.n; ++j) {
     if (!f.body.upper_body[static_cast<size_t>(j)]) CHECK(pose.rotations[static_cast<size_t>(j)] == before.rotations[static_cast<size_t>(j)]);
   }
@@ -133,6 +149,154 @@ TEST_CASE("the optimizer lowers the cost, brings the COM toward the support cent
   const BalanceResult short_run = optimize_balance(*f.skeleton, f.model, params, targets, one, s);
   CHECK(short_run.steps <= 1);
   CHECK(short_run.after.com_distance <= short_run.before.com_distance);
+}
+
+TEST_CASE("the trust region bounds how far and how fast the optimizer moves the body parts") {
+  Fixture f;
+  BalanceParams params;  // defaults: max_part_shift 6 cm, max_shift_speed 0.3 m/s
+  Pose pose = leaning_pose(f);
+  const std::vector<glm::vec3> style = centroids_of(f, pose);
+  BalanceTargets targets;
+  targets.support_centre = {0.0f, 0.05f};
+  targets.style = style.data();
+  // The support centre 12 cm behind the COM: further than any slight correction can bring it.
+  const glm::vec3 com = model_center_of_mass(f.model, style.data());
+  targets.support_centre = {com.x, com.z - 0.12f};
+  BalanceScratch s;
+  s.resize(f.n, f.parts);
+  // Without a frame rate bound the size bound holds and is reached: the optimizer goes as far as it may.
+  params.max_shift_speed = 0.0f;
+  Pose a = pose;
+  const BalanceResult bounded = optimize_balance(*f.skeleton, f.model, params, targets, a, s);
+  CHECK(bounded.before.com_distance == doctest::Approx(0.12f).epsilon(1e-3));
+  CHECK(bounded.after.com_distance < bounded.before.com_distance - 0.01f);
+  const float shift = largest_shift(centroids_of(f, a), style);
+  CHECK(shift <= params.max_part_shift + 1e-5f);
+  CHECK(shift > 0.8f * params.max_part_shift);
+  CHECK(bounded.largest_shift == doctest::Approx(shift).epsilon(1e-3));
+  CHECK(bounded.after.total < bounded.before.total);
+  // The rate bound: in one frame of 1/30 s no centroid moves more than max_shift_speed / 30.
+  params.max_shift_speed = 0.3f;
+  Pose b = pose;
+  optimize_balance(*f.skeleton, f.model, params, targets, b, s, nullptr, 1.0f / 30.0f);
+  const float step = largest_shift(centroids_of(f, b), style);
+  CHECK(step <= 0.3f / 30.0f + 1e-5f);
+  CHECK(step > 0.5f * 0.3f / 30.0f);
+}
+
+TEST_CASE("warm start: each frame continues from the previous correction, and drops it when it would hurt") {
+  Fixture f;
+  BalanceParams params;
+  Pose pose = leaning_pose(f);
+  const std::vector<glm::vec3> style = centroids_of(f, pose);
+  BalanceTargets targets;
+  targets.support_centre = {0.0f, 0.05f};
+  targets.style = style.data();
+  BalanceScratch s;
+  s.resize(f.n, f.parts);
+  BalanceCorrection memory;
+  const float dt = 1.0f / 30.0f;
+  // The same blended posture frame after frame: the correction changes by at most max_shift_speed * dt a
+  // frame, and since each frame starts where the last one ended, the cost never rises.
+  std::vector<glm::vec3> last = style;
+  float last_cost = 1e9f;
+  for (int frame = 0; frame < 12; ++frame) {
+    Pose p = pose;
+    const BalanceResult r = optimize_balance(*f.skeleton, f.model, params, targets, p, s, &memory, dt);
+    CHECK(r.warm_started == (frame > 0));
+    const std::vector<glm::vec3> now = centroids_of(f, p);
+    CHECK(largest_shift(now, last) <= params.max_shift_speed * dt + 1e-4f);
+    CHECK(largest_shift(now, style) <= params.max_part_shift + 1e-5f);
+    CHECK(r.after.total <= last_cost + 1e-6f);
+    CHECK(r.after.com_distance <= r.before.com_distance);
+    last = now;
+    last_cost = r.after.total;
+  }
+  // Twelve frames went further than one frame may.
+  CHECK(largest_shift(last, style) > 2.0f * params.max_shift_speed * dt);
+  CHECK(memory.valid);
+  // The support moves far ahead of the body: keeping the correction (which pulled the COM back toward the
+  // old centre) would take the COM further from the new centre than the blended posture has it, so the
+  // descent starts afresh.
+  targets.support_centre = {0.0f, 0.6f};
+  Pose p = pose;
+  const BalanceResult r = optimize_balance(*f.skeleton, f.model, params, targets, p, s, &memory, dt);
+  CHECK_FALSE(r.warm_started);
+  CHECK(r.after.com_distance <= r.before.com_distance);
+  CHECK(largest_shift(centroids_of(f, p), style) <= params.max_shift_speed * dt + 1e-5f);
+}
+
+TEST_CASE("the optimizer gradient equals the full gradient at the optimized joints, and joints that move no mass are left out") {
+  // The rig with fingers below each hand: the hand segment ends at the middle finger's first joint, so
+  // turning a finger joint moves no point of the mass table.
+  const auto skeleton = test::make_test_skeleton(true);
+  const BodyMap body = BodyMap::detect(*skeleton);
+  const MassModel mass = MassModel::build(*skeleton, body);
+  const BalanceModel model = BalanceModel::build(*skeleton, body, mass);
+  for (const char* finger : {"lMid1", "lMid2", "rMid1", "rMid2"}) {
+    const int j = skeleton->find(finger);
+    REQUIRE(j >= 0);
+    CHECK(body.upper_body[static_cast<size_t>(j)]);
+    CHECK(std::find(model.optimized.begin(), model.optimized.end(), j) == model.optimized.end());
+  }
+  CHECK(std::find(model.optimized.begin(), model.optimized.end(), skeleton->find("lHand")) != model.optimized.end());
+
+  std::mt19937 rng(17);
+  const int n = skeleton->size(), parts = static_cast<int>(model.parts.size());
+  const auto centroids = [&](const Pose& p) {
+    std::vector<glm::vec3> wp, c(static_cast<size_t>(parts));
+    std::vector<glm::quat> wr;
+    forward_kinematics(*skeleton, p, wp, &wr);
+    part_centroids(*skeleton, model, wp, wr, c.data());
+    return c;
+  };
+  const Pose pose = random_pose(n, rng, 0.5f);
+  const std::vector<glm::vec3> style = centroids(random_pose(n, rng, 0.5f));
+  const std::vector<glm::vec3> prev = centroids(random_pose(n, rng, 0.5f)), prev2 = centroids(random_pose(n, rng, 0.5f));
+  BalanceParams params;
+  BalanceTargets targets;
+  targets.support_centre = {0.2f, -0.1f};
+  targets.style = style.data();
+  targets.previous = prev.data();
+  targets.before_previous = prev2.data();
+  BalanceScratch full, fast;
+  for (BalanceScratch* s : {&full, &fast}) {
+    s->resize(n, parts);
+    forward_kinematics(*skeleton, pose, s->positions, &s->rotations);
+    part_centroids(*skeleton, model, s->positions, s->rotations, s->centroids.data());
+  }
+  balance_gradient(*skeleton, model, params, targets, full);
+  optimized_balance_gradient(*skeleton, model, params, targets, fast);
+  for (int j = 0; j < n; ++j) {
+    const glm::vec3 g = full.joint_gradient[static_cast<size_t>(j)];
+    const bool optimized = std::find(model.optimized.begin(), model.optimized.end(), j) != model.optimized.end();
+    if (optimized) {
+      CHECK(glm::length(fast.joint_gradient[static_cast<size_t>(j)] - g) < 1e-5f * std::max(1.0f, glm::length(g)));
+    } else if (body.upper_body[static_cast<size_t>(j)]) {
+      CHECK(glm::length(g) < 1e-6f);  // a left-out upper-body joint: its gradient is zero
+    }
+  }
+  CHECK(glm::length(com_response(model, fast) - com_response(model, full)) < 1e-5f);
+}
+
+TEST_CASE("support polygon into an existing polygon: the same hull, storage reused") {
+  FootPoints feet;
+  feet.heel = {glm::vec3(0.1f, 0.08f, 0.0f), glm::vec3(-0.1f, 0.08f, 0.3f)};
+  feet.toe = {glm::vec3(0.12f, 0.0f, 0.2f), glm::vec3(-0.08f, 0.0f, 0.5f)};
+  const ContactParams params;
+  SupportPolygon reused;
+  reused.hull.reserve(16);
+  const glm::vec2* storage = reused.hull.data();
+  for (const FrameContacts contacts : {FrameContacts{FootContact{true, true}, FootContact{true, false}},
+                                       FrameContacts{FootContact{false, true}, FootContact{false, false}},
+                                       FrameContacts{FootContact{false, false}, FootContact{false, false}},
+                                       FrameContacts{FootContact{true, true}, FootContact{true, true}}}) {
+    const SupportPolygon made = support_polygon(feet, contacts, params);
+    support_polygon(feet, contacts, params, reused);
+    CHECK(reused.hull == made.hull);
+    CHECK(reused.hull.data() == storage);
+  }
+  CHECK(reused.hull.size() >= 6);  // the last: both whole soles
 }
 
 }  // namespace prep

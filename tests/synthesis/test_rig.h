@@ -10,7 +10,8 @@
 
 namespace prep::test {
 
-inline std::shared_ptr<const Skeleton> make_test_skeleton() {
+// With fingers, each hand gets a middle finger of two joints (lMid1, lMid2) ending in an End Site.
+inline std::shared_ptr<const Skeleton> make_test_skeleton(bool fingers = false) {
   auto s = std::make_shared<Skeleton>();
   auto add = [&](const char* name, int parent, glm::vec3 offset) {
     Joint j;
@@ -36,7 +37,13 @@ inline std::shared_ptr<const Skeleton> make_test_skeleton() {
     const int shoulder = add(left ? "lShldr" : "rShldr", collar, {side * 0.12f, 0.0f, 0.0f});
     const int elbow = add(left ? "lForeArm" : "rForeArm", shoulder, {side * 0.28f, 0.0f, 0.0f});
     const int hand = add(left ? "lHand" : "rHand", elbow, {side * 0.25f, 0.0f, 0.0f});
-    end_site(hand, {side * 0.18f, 0.0f, 0.0f});
+    if (fingers) {
+      const int mid1 = add(left ? "lMid1" : "rMid1", hand, {side * 0.09f, 0.0f, 0.0f});
+      const int mid2 = add(left ? "lMid2" : "rMid2", mid1, {side * 0.05f, 0.0f, 0.0f});
+      end_site(mid2, {side * 0.04f, 0.0f, 0.0f});
+    } else {
+      end_site(hand, {side * 0.18f, 0.0f, 0.0f});
+    }
   }
   for (float side : {1.0f, -1.0f}) {
     const bool left = side > 0.0f;

@@ -1,0 +1,146 @@
+#include "engine/synthesis/preparation_run.h"
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "engine/library/builtin.h"
+#include "engine/motion/motion_set.h"
+
+namespace prep {
+namespace {
+
+struct RunSummary {
+  int balance_frames = 0;       // alpha >= the optimizer's threshold and some foot in contact
+  int inside_before = 0, inside_after = 0;
+  int double_frames = 0, double_inside_after = 0;
+  int distance_increased = 0;
+  float max_slide = 0.0f;       // m per frame, planted heel or toe points
+  float max_shift = 0.0f;       // m, the optimizer's largest move of a body-part centroid
+  double distance_before = 0.0, distance_after = 0.0;  // sums over balance frames
+};
+
+RunSummary summarize(const PreparationRun& run, const Params& params) {
+  RunSummary s;
+  for (size_t i = 0; i < run.frames.size(); ++i) {
+    const SynthesisReport& r = run.reports[i];
+    if (i > 0) s.max_slide = std::max(s.max_slide, run.foot_slide[i]);
+    if (r.alpha < params.balance.alpha_threshold || !r.has_support) continue;
+    ++s.balance_frames;
+    s.inside_before += r.com_inside_before;
+    s.inside_after += r.com_inside_after;
+    if (run.contacts[i][kLeft].any() && run.contacts[i][kRight].any()) {
+      ++s.double_frames;
+      s.double_inside_after += r.com_inside_after;
+    }
+    s.distance_increased += r.com_distance_after > r.com_distance_before;
+    s.max_shift = std::max(s.max_shift, r.balance_shift);
+    s.distance_before += r.com_distance_before;
+    s.distance_after += r.com_distance_after;
+  }
+  return s;
+}
+
+// Walk -> every target motion of the set, alpha ramping 0 -> 1 over 3 s (issue 5's acceptance run).
+//
+// What is asserted, for every target of the built-in library and both CMU manifests:
+//  - a heel or toe the foot IK holds moves at most 2 mm per frame (the criterion, met: 1.2 mm built-in,
+//    under 1 mm on daz43 at 120 fps, under 0.1 mm on cmu31);
+//  - the COM's distance to the support centre never increases through the optimization, on any frame;
+//  - no body part is moved more than balance.max_part_shift by the optimizer (the trust region, balance.h);
+//  - the optimizer lowers the mean COM distance and never lowers the fraction of frames inside.
+//
+// What is NOT met, and why (measured on these runs; the test prints the figures): the issue asks that the
+// COM lie inside the support polygon on at least 95% of the frames with alpha >= 0.3. After optimization
+// it is 31-35% on the built-in library, 16-27% on daz43's jumps and kicks (6% with kick_10_03) and 0-69%
+// on cmu31. The frames that fail are single support (66% of the built-in runs' frames, 76% daz43's, 69%
+// cmu31's), where the COM passes 5-40 cm from the stance foot's centre: the blended motion is still a
+// walk, and a walk's COM passes over the stance foot only briefly (the locomotion clips themselves have it
+// inside the polygon on 35% of their frames built-in, 44% daz43 walk_02_01, 66% cmu31 walk_69_01). In
+// double support it is inside on 86-100% built-in, 67-95% daz43 (26% kick_10_03), 0-100% cmu31. Moving
+// the COM 5-40 cm with the upper body alone takes a 30-60 degree lean: with the trust region off the
+// optimizer reached 56-68% on the built-in library with the trunk leaning up to 46 degrees and swinging
+// from one foot to the other at every step (a drunk), which is worse than the blend. Two more findings:
+// at high alpha the legs are nearly T_p's while the contacts stay the walk's (the paper keeps them, Sec.
+// 5.2), so the body stands on both feet while one is labelled "swing" (counting a foot within 5 cm of the
+// floor as support would add 17-41% of the frames, still short of 95%); and cmu31's duck and punches and
+// daz43's kick_10_03 have no statically balanced frame before T_t (`prep info --json`, condition
+// com_in_support), so T_p falls back to T_0; the duck's is a running pose whose COM is 10-40 cm ahead of
+// the feet.
+void check_library(const MotionSet& set, const Params& params) {
+  const int walk = find_cyclic_clip(set, Role::Walk);
+  REQUIRE(walk >= 0);
+  int targets = 0;
+  for (const MotionClip& target : set.clips) {
+    if (target.target_frame < 0) continue;
+    ++targets;
+    CAPTURE(set.name);
+    CAPTURE(target.clip.name);
+    PreparationRunOptions options;
+    options.locomotion_clip = walk;
+    options.reference = target.clip.frames[static_cast<size_t>(scan_reference_frame(set, target, params))];
+    options.alpha_start = 0.0f;
+    options.alpha_end = 1.0f;
+    options.seconds = 3.0f;
+    const PreparationRun run = run_preparation(set, params, options);
+    REQUIRE(run.frames.size() == static_cast<size_t>(std::lround(3.0f * run.fps)) + 1);
+    const RunSummary s = summarize(run, params);
+    REQUIRE(s.balance_frames > static_cast<int>(run.frames.size()) / 2);
+    CHECK(s.max_slide <= 0.002f);
+    CHECK(s.distance_increased == 0);
+    CHECK(s.max_shift <= params.balance.max_part_shift + 1e-4f);
+    CHECK(s.distance_after < s.distance_before);
+    CHECK(s.inside_after >= s.inside_before);
+    std::printf("%-7s %-20s slide %.2f mm  COM inside %5.1f%% -> %5.1f%% (double support %5.1f%%)  mean distance %.3f -> %.3f m\n",
+                set.name.c_str(), target.clip.name.c_str(), 1000.0f * s.max_slide,
+                100.0 * s.inside_before / s.balance_frames, 100.0 * s.inside_after / s.balance_frames,
+                s.double_frames ? 100.0 * s.double_inside_after / s.double_frames : 0.0,
+                s.distance_before / s.balance_frames, s.distance_after / s.balance_frames);
+  }
+  CHECK(targets >= 2);
+}
+
+}  // namespace
+
+TEST_CASE("walk -> every target, alpha 0 -> 1 over 3 s: the built-in library") {
+  const Params params;
+  check_library(make_builtin_motion_set(params), params);
+}
+
+TEST_CASE("walk -> every target, alpha 0 -> 1 over 3 s: the daz43 and cmu31 CMU manifests") {
+  const Params params;
+  for (const char* manifest : {"/assets/manifests/daz43.json", "/assets/manifests/cmu31.json"}) {
+    check_library(load_motion_set(std::string(PREP_SOURCE_DIR) + manifest, params), params);
+  }
+}
+
+TEST_CASE("the locomotion loop continues across its wrap without a jump") {
+  const Params params;
+  const MotionSet set = make_builtin_motion_set(params);
+  const MotionClip& walk = set.clips[static_cast<size_t>(find_cyclic_clip(set, Role::Walk))];
+  LocomotionLoop loop(walk);
+  Pose previous, pose;
+  FrameContacts contacts{};
+  loop.next(previous, contacts);
+  float largest_step = 0.0f, median_step = 0.0f;
+  const int cycle = walk.loop_last - walk.loop_first + 1;
+  std::vector<float> steps;
+  for (int f = 1; f < 3 * cycle; ++f) {
+    loop.next(pose, contacts);
+    const glm::vec3 d = pose.root_position - previous.root_position;
+    steps.push_back(std::sqrt(d.x * d.x + d.z * d.z));
+    previous = pose;
+  }
+  std::vector<float> sorted = steps;
+  std::sort(sorted.begin(), sorted.end());
+  median_step = sorted[sorted.size() / 2];
+  for (float s : steps) largest_step = std::max(largest_step, s);
+  CHECK(median_step > 0.01f);                // it walks
+  CHECK(largest_step < 2.0f * median_step);  // and never jumps, at the wraps either
+}
+
+}  // namespace prep
