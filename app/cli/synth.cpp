@@ -1,5 +1,5 @@
-// prep synth: walking with preparation rising toward a target action (paper Sec. 5), written as BVH to look
-// at in Blender; --json prints per-frame metrics.
+// prep synth: walking with preparation rising toward a target action (paper Sec. 5), written as BVH or glTF
+// (by the extension of --out) to look at in Blender; --json prints per-frame metrics.
 #include <algorithm>
 #include <cstdio>
 #include <iostream>
@@ -9,8 +9,9 @@
 #include <string>
 
 #include "app/cli/command.h"
+#include "engine/interop/character_mesh.h"
+#include "engine/interop/motion_export.h"
 #include "engine/library/builtin.h"
-#include "engine/motion/bvh.h"
 #include "engine/motion/motion_set.h"
 #include "engine/synthesis/preparation_run.h"
 
@@ -26,6 +27,7 @@ struct SynthOptions {
   std::string out;
   std::string params_file;
   bool json = false;
+  bool with_mesh = false;
 };
 
 void parse_ramp(const std::string& text, float& a0, float& a1) {
@@ -44,6 +46,13 @@ void parse_ramp(const std::string& text, float& a0, float& a1) {
 }
 
 void run_synth(const SynthOptions& o) {
+  if (!o.out.empty()) {
+    // Check the output's format before the work (throws naming the path).
+    if (prep::motion_format(o.out) == prep::MotionFormat::Bvh && o.with_mesh)
+      throw std::invalid_argument("--with-mesh: a BVH holds no mesh (write .glb or .gltf)");
+  } else if (o.with_mesh) {
+    throw std::invalid_argument("--with-mesh needs --out FILE.glb or FILE.gltf");
+  }
   prep::Params params = o.params_file.empty() ? prep::Params{} : prep::load_params(o.params_file);
   params.blend.method = o.method;
   float a0 = 0.0f, a1 = 1.0f;
@@ -88,11 +97,13 @@ void run_synth(const SynthOptions& o) {
     clip.skeleton = set.skeleton;
     clip.fps = run.fps;
     clip.frames = run.frames;
-    prep::write_bvh(clip, o.out);
+    prep::SkinnedMesh mesh;
+    if (o.with_mesh) mesh = prep::build_character_mesh(*set.skeleton, set.body);
+    prep::write_clip(o.out, clip, o.with_mesh ? &mesh : nullptr);
   }
 
-  int considered = 0, inside_before = 0, inside_after = 0, increased = 0;
-  float max_slide = 0.0f;
+  int considered = 0, inside_before = 0, inside_after = 0, increased = 0, double_support = 0, double_inside = 0;
+  float max_slide = 0.0f, max_shift = 0.0f;
   for (size_t i = 0; i < run.frames.size(); ++i) {
     const auto& r = run.reports[i];
     max_slide = std::max(max_slide, run.foot_slide[i]);
@@ -101,6 +112,11 @@ void run_synth(const SynthOptions& o) {
     inside_before += r.com_inside_before ? 1 : 0;
     inside_after += r.com_inside_after ? 1 : 0;
     increased += r.com_distance_after > r.com_distance_before ? 1 : 0;
+    max_shift = std::max(max_shift, r.balance_shift);
+    if (run.contacts[i][prep::kLeft].any() && run.contacts[i][prep::kRight].any()) {
+      ++double_support;
+      double_inside += r.com_inside_after ? 1 : 0;
+    }
   }
   const auto fraction = [&](int k) { return considered > 0 ? static_cast<double>(k) / considered : 0.0; };
   if (o.json) {
@@ -113,7 +129,11 @@ void run_synth(const SynthOptions& o) {
                           {"foot_slide", run.foot_slide[i]},
                           {"support", r.has_support},
                           {"optimized", r.balanced},
-                          {"steps", r.balance_steps}};
+                          {"warm_started", r.warm_started},
+                          {"steps", r.balance_steps},
+                          {"balance_shift", r.balance_shift},
+                          {"contacts", {{"left", {run.contacts[i][prep::kLeft].heel, run.contacts[i][prep::kLeft].toe}},
+                                        {"right", {run.contacts[i][prep::kRight].heel, run.contacts[i][prep::kRight].toe}}}}};
       if (r.has_support) {
         f["com_distance_before"] = r.com_distance_before;
         f["com_distance_after"] = r.com_distance_after;
@@ -134,6 +154,10 @@ void run_synth(const SynthOptions& o) {
                             {"balance_frames", considered},
                             {"com_inside_before", fraction(inside_before)},
                             {"com_inside_after", fraction(inside_after)},
+                            {"double_support_frames", double_support},
+                            {"double_support_inside_after",
+                             double_support > 0 ? static_cast<double>(double_inside) / double_support : 0.0},
+                            {"max_balance_shift", max_shift},
                             {"distance_increased", increased}}},
                           {"frames", std::move(frames)}};
     std::cout << out.dump(1) << "\n";
@@ -146,12 +170,15 @@ void run_synth(const SynthOptions& o) {
                 "optimization; distance increased on %d\n",
                 params.balance.alpha_threshold, considered, 100.0 * fraction(inside_before), 100.0 * fraction(inside_after),
                 increased);
+    std::printf("double support: %d of those frames, COM inside on %.1f%% after optimization; the optimizer moved a "
+                "body part at most %.1f cm\n",
+                double_support, double_support > 0 ? 100.0 * double_inside / double_support : 0.0, 100.0f * max_shift);
     if (!o.out.empty()) std::printf("wrote %s\n", o.out.c_str());
   }
 }
 
 prep::cli::RegisterCommand synth_command(
-    "synth", "Synthesize walking with preparation rising toward a target action (Sec. 5); write BVH", 40,
+    "synth", "Synthesize walking with preparation rising toward a target action (Sec. 5); write BVH or glTF", 40,
     [](CLI::App& app) {
       auto o = std::make_shared<SynthOptions>();
       app.add_option("--motions", o->motions, "Motion-set manifest (JSON); default: the built-in library");
@@ -164,7 +191,8 @@ prep::cli::RegisterCommand synth_command(
       app.add_option("--method", o->method, "ours (per-joint curves, Eq. 1) or linear (one weight, Fig. 6 top)")
           ->check(CLI::IsMember({"ours", "linear"}))
           ->capture_default_str();
-      app.add_option("--out", o->out, "Write the synthesized motion to this BVH file");
+      app.add_option("--out", o->out, "Write the synthesized motion to this file: .bvh, .glb or .gltf");
+      app.add_flag("--with-mesh", o->with_mesh, "glTF only: add our skinned body, bound to the set's skeleton");
       app.add_option("--params", o->params_file, "Params JSON file");
       app.add_flag("--json", o->json, "Print per-frame alpha, COM distance to the support centre before/after "
                                       "optimization and foot slide as JSON");
