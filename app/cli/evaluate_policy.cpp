@@ -19,12 +19,8 @@ struct EvalOptions {
 
 void run(const EvalOptions& o) {
   const prep::Params params = o.params.empty() ? prep::Params{} : prep::load_params(o.params);
-  const prep::Policy policy = prep::load_policy(o.policy, params);  // refuses another configuration
-  const prep::StateSpace states = policy.state_space();
-  const prep::ActionSpace actions = policy.action_space();
-  const prep::Environment env(states, actions, policy.table, params.reward);
-  const prep::PolicyEvaluation e = prep::evaluate_policy(env, policy.q, o.episodes, o.seed,
-                                                         params.sarsa.max_episode_steps, params.sarsa.discount);
+  const auto policy = std::make_shared<const prep::Policy>(prep::load_policy(o.policy, params));  // refuses another configuration
+  const prep::PolicyEvaluation e = prep::evaluate_policy(policy, params, o.episodes, o.seed);
   if (o.json) {
     nlohmann::json j;
     j["episodes"] = e.episodes;
@@ -32,12 +28,16 @@ void run(const EvalOptions& o) {
     j["median_steps_to_goal"] = e.median_steps_to_goal;
     j["median_alpha_at_source"] = e.median_alpha_at_source;
     j["alpha_at_1m_ratio"] = e.alpha_at_1m_ratio;
-    j["mean_return"] = e.mean_return;
+    j["played_alpha_at_1m_ratio"] = e.played_alpha_at_1m_ratio;
+    j["median_level_at_arrival"] = e.median_level_at_arrival;
+    j["median_alpha_at_1m"] = e.median_alpha_at_1m;
+    j["median_seconds_to_goal"] = e.median_seconds_to_goal;
     std::cout << j.dump(2) << "\n";
   } else {
     std::cout << e.episodes << " episodes: goal reached " << 100.0 * e.goal_reached_ratio << "%, median "
               << e.median_steps_to_goal << " steps to the goal, median alpha at the source " << e.median_alpha_at_source
-              << ", alpha >= 0.5 at 1 m in " << 100.0 * e.alpha_at_1m_ratio << "% of episodes\n";
+              << " (the policy's level on arrival " << e.median_level_at_arrival << "), alpha >= 0.5 at 1 m in "
+              << 100.0 * e.alpha_at_1m_ratio << "% of episodes\n";
   }
 }
 

@@ -33,7 +33,7 @@ prep::cli::RegisterCommand run_command(
       app.add_option("--params", o->params, "Params JSON (default: the scenario's \"params\", else the defaults)");
       app.add_option("--policy-cache", o->cache, "Folder of cached policies (default: ~/.cache/prep)");
       app.add_flag("--json", o->json, "Print one JSON object");
-      app.add_option("--trace", o->trace, "Also print the user's state every TRACE seconds (to stderr)");
+      app.add_option("--trace", o->trace, "Also print every character's state every TRACE seconds (to stderr; u = the user, o = an opponent)");
       app.callback([o] {
         if (!(o->seconds > 0.0f)) throw std::invalid_argument("--seconds must be positive");
         const prep::Scenario scenario = prep::load_scenario(o->scenario);
@@ -52,13 +52,18 @@ prep::cli::RegisterCommand run_command(
         for (int k = 0; k < ticks; ++k) {
           world.step();
           if (every > 0 && world.ticks() % every == 0) {
-            const prep::WorldCharacter& u = world.characters()[static_cast<size_t>(world.user())];
-            std::fprintf(stderr,
-                         "t %6.2f  pos (%6.2f, %6.2f)  heading %7.1f deg  alpha %.2f (chosen %.1f %s)  clip %-12s  source %s\n",
-                         world.time(), u.position.x, u.position.y, u.heading * 57.2957795f, u.alpha, u.chosen_alpha,
-                         u.motion >= 0 ? world.assets().policy->table.motion_names[static_cast<size_t>(u.motion)].c_str() : "-",
-                         world.assets().set->clips[static_cast<size_t>(u.clip)].clip.name.c_str(),
-                         u.has_source ? prep::target_action_name(u.prepared_for) : "-");
+            for (size_t i = 0; i < world.characters().size(); ++i) {
+              const prep::WorldCharacter& u = world.characters()[i];
+              std::fprintf(stderr,
+                           "t %6.2f %c%zu pos (%6.2f, %6.2f)  heading %7.1f deg  alpha %.2f (chosen %.1f %s)  clip %-12s  "
+                           "source %s%s  to launch %.2f m%s\n",
+                           world.time(), static_cast<int>(i) == world.user() ? 'u' : 'o', i, u.position.x, u.position.y,
+                           u.heading * 57.2957795f, u.alpha, u.chosen_alpha,
+                           u.motion >= 0 ? world.assets().policy->table.motion_names[static_cast<size_t>(u.motion)].c_str() : "-",
+                           world.assets().set->clips[static_cast<size_t>(u.clip)].clip.name.c_str(),
+                           u.has_source ? prep::target_action_name(u.prepared_for) : "-", u.source_ahead ? " (ahead)" : "",
+                           u.to_launch, u.arrived ? "  arrived" : "");
+            }
           }
         }
         const prep::RunSummary summary = prep::summarize(world);

@@ -72,20 +72,7 @@ void run(const TrainOptions& o) {
   const prep::TrainingResult r = prep::train_sarsa(env, params.sarsa, topt);
   if (bar) std::fprintf(stderr, "\n");
 
-  prep::Policy policy;
-  policy.params_hash = prep::policy_params_hash(params);
-  policy.quantization = params.quantization;
-  policy.target = o.target;
-  policy.table = table;
-  for (int m = 0; m < table.motions; ++m) policy.allowed_masks.push_back(actions.allowed_mask(m));
-  policy.steps = r.steps;
-  policy.episodes = r.episodes;
-  policy.converged = r.converged;
-  policy.seed = params.sarsa.seed;
-  policy.threads = params.sarsa.threads;
-  policy.states = states.size();
-  policy.actions = actions.size();
-  policy.q = r.q;
+  const prep::Policy policy = prep::make_policy(params, table, actions, r, o.target);
   prep::save_policy(policy, o.out);
 
   const std::string stem = stem_of(o.out);

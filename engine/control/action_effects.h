@@ -6,10 +6,19 @@
 // as the root's Eq. 1 weight w_r rises with alpha; the heading follows the locomotion (blend_root_rotation
 // keeps it), so a turning motion still turns when prepared. Nothing here is typed in by hand.
 //
-// One action is one footstep (the motion graph can switch motion at each): the clip's loop is cut into as
-// many equal parts as it has footsteps (touchdowns in its contacts, at least two: one gait cycle), each
-// part measured in the frame the character had at its start, and the effect is their mean (left and right
-// steps differ slightly).
+// One action plays QuantizationParams::footsteps_per_action footsteps of its clip: the clip's loop is cut
+// into as many equal parts as it has footsteps (touchdowns in its contacts, at least two: one gait cycle),
+// consecutive parts are grouped by footsteps_per_action, each group measured in the frame the character
+// had at its start, and the effect is their mean (left and right steps differ slightly).
+//
+// Why a gait cycle (2 footsteps) by default, not one footstep. (1) The hierarchical motion graph passes
+// from one cyclic core node to another at its loop, once per cycle (Sec. 4.1): an action is one play of a
+// node. (2) With the paper's discount of 0.3 the learner sees about one action ahead. Inside the source
+// radius alpha is forced to 1 after every action (reward.h), so to move on the character pays Eq. 16 twice
+// per action (1 -> 0.8 -> 1: 0.048) and gains Eq. 15's 0.15 m^-1 of approach: a footstep at alpha 0.8
+// (0.195 m in the built-in walk, 0.029) does not pay for it and the learned policy stops short of the
+// goal forever; a cycle (0.39 m, 0.059) does. (3) A cycle of a built-in turn turns 45 degrees, one
+// theta_g bin of Table I.
 #pragma once
 
 #include <string>
@@ -27,6 +36,8 @@ struct ActionEffect {
   float duration = 0.0f;  // s
   float cos_turn = 1.0f;  // cos(turn) and sin(turn), precomputed for the environment step
   float sin_turn = 0.0f;
+  float inv_chord2 = 0.0f;  // 1 / (forward^2 + left^2), 0 for an action that does not move (ditto)
+  void precompute();        // the three above from forward, left and turn
 };
 
 // The lower-body (root) blend curve the table was made with: Eq. 1's C and c of the root, or linear.
@@ -53,18 +64,24 @@ struct ActionTable {
 // The root curve of a motion set's skeleton under BlendParams (C_lower, overrides, method).
 RootCurve root_curve(const MotionSet& set, const BlendParams& blend);
 
-// One footstep of a cyclic clip played with root weight w_r (the mean over the footsteps of its loop).
-ActionEffect footstep_effect(const MotionClip& clip, float w_root, const std::string& source_name);
+// The footsteps of a cyclic clip's loop: two per gait cycle (see footsteps_in_loop in the .cpp).
+int footsteps_in_loop(const MotionClip& clip);
+
+// One action of a cyclic clip played with root weight w_r: `footsteps` footsteps (at most the loop's; at
+// least one), the mean over the loop. Throws InputError naming the source for a clip without a loop.
+ActionEffect action_effect(const MotionClip& clip, float w_root, int footsteps, const std::string& source_name);
 
 // The table for the given core clips, levels alpha = l * alpha_step for l < alpha_levels.
 ActionTable tabulate_action_effects(const std::vector<const MotionClip*>& core, const RootCurve& curve,
-                                    int alpha_levels, float alpha_step, const std::string& source_name);
+                                    int alpha_levels, float alpha_step, int footsteps_per_action,
+                                    const std::string& source_name);
 
-// The table for a motion set: its core clips are the first clip of each role in quantization.core_roles.
-// Throws InputError naming the set when a role has no clip or a core clip is not cyclic.
+// The table for a motion set and its core clips (core_clips below). Throws InputError naming the set when
+// an entry names no clip or a core clip is not cyclic.
 ActionTable tabulate_action_effects(const MotionSet& set, const Params& params);
 
-// The core clips of a set (first clip of each role of quantization.core_roles), in that order.
+// The core clips of a set, in the order of quantization.core_roles: an entry that is a role name picks the
+// set's first cyclic clip of that role; any other entry must be the name of a cyclic locomotion clip.
 std::vector<const MotionClip*> core_clips(const MotionSet& set, const QuantizationParams& q);
 
 }  // namespace prep

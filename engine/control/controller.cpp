@@ -44,18 +44,41 @@ Controller::Controller(std::shared_ptr<const Policy> policy, const Params& param
       states_(policy_->state_space()),
       actions_(policy_->action_space()),
       filter_(params.runtime.alpha_sigma_s, params.runtime.fixed_dt),
-      goal_radius_(params.reward.goal_radius) {
+      goal_radius_(params.reward.goal_radius),
+      source_radius_(params.reward.source_radius) {
   filter_.reset(0.0f);
 }
 
 void Controller::reset(int motion, int alpha_level) {
   motion_ = motion;
   alpha_level_ = alpha_level;
+  arrived_ = false;
   filter_.reset(alpha_of_level(alpha_level));
+}
+
+void Controller::set_arrived(bool arrived) {
+  arrived_ = arrived;
+  if (arrived) alpha_level_ = states_.top_alpha_level();  // Eq. 13's override: the state's alpha is 1
 }
 
 ControlDecision Controller::decide(const ControlInput& in) {
   const Situation s = make_situation(in.position, in.heading, in.goal, in.source, alpha_level_, motion_);
+  ControlDecision d;
+  d.at_goal = s.d_g < goal_radius_;
+  if (d.at_goal) {
+    // Training ends an episode on entering the goal radius, so the policy never learned anything inside
+    // it (its Q values there are untouched): the character carries on with the action it plays (for a
+    // goal that is also the launch point, until the arrival stops it there, arrival.h).
+    d.action = actions_.index({motion_, alpha_level_});
+    d.motion = motion_;
+    d.alpha_level = alpha_level_;
+    d.alpha = alpha_of_level(alpha_level_);
+    d.state = -1;
+    return d;
+  }
+  // At the source the state's alpha is 1, as after every training action that ends there (environment.h).
+  d.at_source = s.d_i < source_radius_;
+  if (d.at_source || arrived_) alpha_level_ = states_.top_alpha_level();
   StateBins b;
   b.alpha = alpha_level_;
   b.motion = motion_;
@@ -63,15 +86,15 @@ ControlDecision Controller::decide(const ControlInput& in) {
   b.theta_g = states_.theta_g_bin(s.theta_g);
   b.d_i = states_.d_i_bin(s.d_i);
   b.theta_i = states_.theta_i_bin(s.theta_i);
-  ControlDecision d;
   d.state = states_.index(b);
-  d.at_goal = s.d_g < goal_radius_;
   // Greedy over the actions Next(last motion) allows (lowest index on ties, as in training).
   const std::uint64_t allowed = actions_.allowed_mask(motion_);
   const float* row = policy_->row(d.state);
   int best = -1;
-  for (int a = 0; a < actions_.size(); ++a)
+  for (int a = 0; a < actions_.size(); ++a) {
+    if (level_cap_ >= 0 && actions_.decode(a).alpha_level > level_cap_) continue;
     if ((allowed >> a & 1u) && (best < 0 || row[a] > row[best])) best = a;
+  }
   d.action = best;
   const Action a = actions_.decode(best);
   d.motion = a.motion;

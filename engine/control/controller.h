@@ -1,9 +1,15 @@
 // The behaviour controller at run time (Sec. 6.1 end, Sec. 8).
 //
-// Each control step (when the character may switch motion: at the end of a footstep) the controller
-// quantizes the situation (Eq. 11) and takes the greedy action a = {m, alpha} of its policy; the chosen
-// alpha becomes the state's alpha (Eq. 13). Discrete alpha levels would give discrete behaviour, so the
-// alpha that reaches synthesis passes a Gaussian filter over time.
+// Each control step (when the character may switch motion: at the end of an action, one gait cycle) the
+// controller quantizes the situation (Eq. 11) and takes the greedy action a = {m, alpha} of its policy; the
+// chosen alpha becomes the state's alpha (Eq. 13). Discrete alpha levels would give discrete behaviour,
+// so the alpha that reaches synthesis passes a Gaussian filter over time.
+//
+// The forcing of alpha to 1 at the source (Sec. 6.2) happens at run time as in training: a decision taken
+// within RewardParams::source_radius of the source is taken in the state whose alpha is 1 (Eq. 13's
+// override, environment.h), so the policy is asked only the questions it was trained on. Once the
+// character has arrived at its launch point (arrival.h, decided by the world) the played alpha itself is
+// forced to 1 and the character glides to a stop, prepared.
 //
 // The filter is causal (it only knows the past): each engine tick it records the alpha chosen last, and
 // outputs the Gaussian-weighted mean of the recorded history, weight exp(-(k dt)^2 / (2 sigma^2)) for the
@@ -57,8 +63,9 @@ struct ControlDecision {
   int motion = 0;         // index into the policy's core motions
   int alpha_level = 0;
   float alpha = 0.0f;     // the chosen (unfiltered) level
-  int state = 0;          // the quantized state it was chosen in
-  bool at_goal = false;   // the goal is within the goal radius: nothing left to approach
+  int state = 0;          // the quantized state it was chosen in (-1 at the goal: the action kept)
+  bool at_goal = false;   // the goal is within the goal radius: the last action is kept (controller.cpp)
+  bool at_source = false; // within the source radius: the state's alpha was forced to 1 (Eq. 13)
 };
 
 class Controller {
@@ -67,11 +74,19 @@ class Controller {
 
   // The greedy action in the current situation; updates the state's alpha (Eq. 13) and last motion.
   ControlDecision decide(const ControlInput& in);
-  // One engine tick (RuntimeParams::fixed_dt): the filtered alpha for synthesis.
-  float tick() { return filter_.push(alpha_of_level(alpha_level_)); }
+  // One engine tick (RuntimeParams::fixed_dt): the filtered alpha for synthesis (1 is played once arrived).
+  float tick() { return filter_.push(arrived_ ? 1.0f : alpha_of_level(alpha_level_)); }
   float filtered_alpha() const { return filter_.value(); }
+  // Arrival at the launch point (arrival.h): the played alpha is forced to 1 and the state's alpha is the
+  // top level until set_arrived(false).
+  void set_arrived(bool arrived);
+  bool arrived() const { return arrived_; }
+  // Only actions at this level or lower are chosen (-1: any). The naive baseline (World::set_preparation
+  // off, synthesis at alpha 0) caps at 0, so the motions chosen are the ones the character really plays:
+  // with a higher level the policy would steer for a stride it does not get (Eq. 3-4) and overshoot.
+  void set_level_cap(int level) { level_cap_ = level; }
 
-  void reset(int motion, int alpha_level);
+  void reset(int motion, int alpha_level);  // also ends an arrival
   int motion() const { return motion_; }
   int alpha_level() const { return alpha_level_; }
   float alpha_of_level(int level) const { return states_.alpha_of(level); }
@@ -85,8 +100,10 @@ class Controller {
   StateSpace states_;
   ActionSpace actions_;
   AlphaFilter filter_;
-  float goal_radius_;
+  float goal_radius_, source_radius_;
   int motion_ = 0, alpha_level_ = 0;
+  bool arrived_ = false;
+  int level_cap_ = -1;
 };
 
 // One policy per lower-body blend curve (Sec. 8).

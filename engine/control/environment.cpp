@@ -41,12 +41,15 @@ Environment::Environment(const StateSpace& states, const ActionSpace& actions, c
     ++first_start_bin_;
 }
 
-void Environment::exploring_start(Rng& rng, float source_at_goal, Situation& s) const {
+void Environment::exploring_start(Rng& rng, float source_at_goal, float far_start_range, Situation& s) const {
   s.alpha_level = rng.below(states_.alpha_levels());
   s.motion = rng.below(states_.motions());
   float lo, hi;
+  // The far end of the last distance bin's starts (see environment.h).
+  auto far_edge = [&](int bins, float bin_hi) { return std::max(bin_hi, far_start_range * states_.d_step() * static_cast<float>(bins)); };
   const int dg_bin = first_start_bin_ + rng.below(states_.d_g_bins() - first_start_bin_);
   states_.distance_range(dg_bin, lo, hi);
+  if (dg_bin == states_.d_g_bins() - 1) hi = far_edge(states_.d_g_bins(), hi);
   lo = std::max(lo, reward_.goal_radius());
   if (hi <= lo) hi = lo + states_.d_step();  // a goal radius beyond every bin: start just outside it
   const float d_g = rng.uniform(lo, hi);
@@ -58,7 +61,9 @@ void Environment::exploring_start(Rng& rng, float source_at_goal, Situation& s) 
     s.source_left = s.goal_left;
     s.source_forward = s.goal_forward;
   } else {
-    states_.distance_range(rng.below(states_.d_i_bins()), lo, hi);
+    const int di_bin = rng.below(states_.d_i_bins());
+    states_.distance_range(di_bin, lo, hi);
+    if (di_bin == states_.d_i_bins() - 1) hi = far_edge(states_.d_i_bins(), hi);
     const float d_i = rng.uniform(lo, hi);
     states_.theta_i_range(rng.below(states_.theta_i_bins()), lo, hi);
     const float theta_i = rng.uniform(lo, hi);

@@ -84,14 +84,24 @@ class Environment {
   StepOutcome step(Situation& s, int action) const {
     const int level = action_level_[action], motion = action_motion_[action];  // decode without a division
     const ActionEffect& e = table_.at(action);
-    const float d_g = s.d_g;
+    const float d_g = s.d_g, theta_g = s.theta_g;
+    // The closest the action's chord comes to the goal (the world checks the goal every tick, so a goal the
+    // character walks through is reached even if the action ends beyond it).
+    const float along = (s.goal_left * e.left + s.goal_forward * e.forward) * e.inv_chord2;
+    const float t = along < 0.0f ? 0.0f : along > 1.0f ? 1.0f : along;
+    const float cl = s.goal_left - t * e.left, cf = s.goal_forward - t * e.forward;
+    const float closest_g = std::sqrt(cl * cl + cf * cf);
     move(s.goal_left, s.goal_forward, e);
     move(s.source_left, s.source_forward, e);
     s.update_polar();
     StepOutcome out;
     out.at_source = s.d_i < reward_.source_radius();  // at the source: within its radius (reward.h)
-    out.at_goal = s.d_g < reward_.goal_radius();
-    out.reward = reward_(std::fabs(s.theta_g), d_g, s.d_g, s.alpha_level, level, out.at_source);  // Eq. 17
+    out.at_goal = closest_g < reward_.goal_radius();
+    // Reached mid-action, the character stops there, having walked at the goal from the bearing it had when
+    // the action began: Eq. 14-15 are taken there (past the goal, its bearing would be behind).
+    const float d_g_next = out.at_goal ? closest_g : s.d_g;
+    const float theta_g_next = out.at_goal ? theta_g : s.theta_g;
+    out.reward = reward_(std::fabs(theta_g_next), d_g, d_g_next, s.alpha_level, level, out.at_source);  // Eq. 17
     s.alpha_level = out.at_source ? states_.top_alpha_level() : level;  // Eq. 13, forced at the source
     s.motion = motion;
     return out;
@@ -99,8 +109,12 @@ class Environment {
 
   // Exploring start: a uniformly random state (alpha level, last motion, and a goal and source placed at a
   // uniformly random point of random bins), never one already at the goal. With probability
-  // source_at_goal the source of influence is the goal itself.
-  void exploring_start(Rng& rng, float source_at_goal, Situation& s) const;
+  // source_at_goal the source of influence is the goal itself. The last distance bin means "that far or
+  // farther"; its starts are drawn from its lower edge out to far_start_range x the quantized range
+  // (d_step x bins), so that what the policy does in it is learned from the distances it will meet there
+  // (prep evaluate-policy starts at 1-2 x the range; a scenario's obstacles lie 2-5 m ahead), not only from
+  // the bin's first 0.4 m. A far_start_range of 1 or less keeps the bin's own width.
+  void exploring_start(Rng& rng, float source_at_goal, float far_start_range, Situation& s) const;
 
  private:
   static void move(float& left, float& forward, const ActionEffect& e) {

@@ -2,11 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
+#include "engine/control/arrival.h"
+#include "engine/control/controller.h"
 #include "engine/control/sarsa.h"
 
 namespace prep {
 namespace {
+
+constexpr float kPi = 3.14159265358979323846f;
 
 double median(std::vector<double> v) {
   if (v.empty()) return 0.0;
@@ -14,6 +19,32 @@ double median(std::vector<double> v) {
   const size_t n = v.size();
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
+
+// A core motion at alpha 0 as a constant velocity in the character's own frame (forward, left) and a
+// constant turn rate, chosen so that integrating them over the action's duration gives the action
+// table's effect exactly: with the frame turning at w = turn / T, the displacement in the start frame is
+// M u with M = [[S, -C], [C, S]], S = sin(turn) / w, C = (1 - cos(turn)) / w (both T when turn = 0).
+struct MotionRate {
+  float forward = 0, left = 0, turn = 0;  // m/s, m/s, rad/s
+};
+
+MotionRate rate_of(const ActionEffect& e) {
+  MotionRate r;
+  if (!(e.duration > 0.0f)) return r;
+  r.turn = e.turn / e.duration;
+  float S = e.duration, C = 0.0f;
+  if (std::fabs(e.turn) > 1e-6f) {
+    S = std::sin(e.turn) / r.turn;
+    C = (1.0f - std::cos(e.turn)) / r.turn;
+  }
+  const float det = S * S + C * C;
+  r.forward = (S * e.forward + C * e.left) / det;
+  r.left = (-C * e.forward + S * e.left) / det;
+  return r;
+}
+
+glm::vec2 forward_of(float heading) { return {std::sin(heading), std::cos(heading)}; }
+glm::vec2 left_of(float heading) { return {std::cos(heading), -std::sin(heading)}; }
 
 }  // namespace
 
@@ -35,58 +66,85 @@ EpisodeTrace greedy_episode(const Environment& env, const std::vector<float>& q,
   return trace;
 }
 
-PolicyEvaluation evaluate_policy(const Environment& env, const std::vector<float>& q, int episodes, std::uint64_t seed,
-                                 int max_episode_steps, float discount) {
-  constexpr float kPi = 3.14159265358979323846f;
-  const float one_metre = 1.0f;  // the distance of alpha_at_1m_ratio, by its definition
-  const float range = static_cast<float>(env.states().d_g_bins()) * env.states().d_step();
-  int start_motion = 0;
-  for (int m = 0; m < env.table().motions; ++m)
-    if (env.table().motion_roles[static_cast<size_t>(m)] == "idle") start_motion = m;
+PolicyEvaluation evaluate_policy(std::shared_ptr<const Policy> policy, const Params& params, int episodes, std::uint64_t seed) {
+  const ActionTable& table = policy->table;
+  const ArrivalModel arrival(table, policy->quantization.alpha_step, params.runtime);
+  std::vector<MotionRate> rates;
+  for (int m = 0; m < table.motions; ++m) rates.push_back(rate_of(table.at(m * table.alpha_levels)));
+  const StateSpace states = policy->state_space();
+  const float range = static_cast<float>(states.d_g_bins()) * states.d_step();
+  const float dt = params.runtime.fixed_dt, goal_radius = params.reward.goal_radius;
+  const float cos45 = std::cos(kPi / 4.0f), one_metre = 1.0f;  // the distance of alpha_at_1m_ratio, by definition
+  const int max_decisions = params.sarsa.max_episode_steps;
+
   Rng rng(seed);
   PolicyEvaluation e;
   e.episodes = episodes;
-  std::vector<double> steps_to_goal, alpha_at_source;
-  int reached = 0, prepared_at_1m = 0;
-  double return_sum = 0.0;
-  const size_t actions = static_cast<size_t>(env.actions().size());
+  std::vector<double> steps_to_goal, seconds_to_goal, alpha_at_source, level_at_arrival, alpha_at_1m;
+  int reached = 0, prepared_at_1m = 0, played_prepared_at_1m = 0;
+  Controller controller(policy, params);
   for (int ep = 0; ep < episodes; ++ep) {
     const float d = rng.uniform(range, 2.0f * range), bearing = rng.uniform(-kPi, kPi);
-    Situation s;
-    s.goal_left = s.source_left = d * std::sin(bearing);
-    s.goal_forward = s.source_forward = d * std::cos(bearing);
-    s.alpha_level = 0;
-    s.motion = start_motion;
-    s.update_polar();
+    const glm::vec2 goal(d * std::sin(bearing), d * std::cos(bearing));
+    glm::vec2 position(0.0f);
+    float heading = 0.0f, time = 0.0f, next_decision = 0.0f;
+    int decisions = 0, motion = 0;
     bool seen_1m = false;
-    double ret = 0.0, weight = 1.0;
-    for (int t = 0; t < max_episode_steps; ++t) {
-      const int state = env.quantize(s);
-      const int a = greedy_action(env, q.data() + static_cast<size_t>(state) * actions, s.motion);
-      const float alpha = env.states().alpha_of(env.actions().decode(a).alpha_level);
-      const StepOutcome out = env.step(s, a);
-      ret += weight * out.reward;  // Eq. 18
-      weight *= discount;
-      if (!seen_1m && s.d_i <= one_metre) {
-        seen_1m = true;
-        if (alpha >= 0.5f) ++prepared_at_1m;
+    controller.reset(0, 0);
+    while (true) {
+      // The world's order per tick: decide (at the end of an action), filter, move, then arrival and launch.
+      if (!controller.arrived() && time >= next_decision) {
+        if (decisions == max_decisions) break;
+        ControlInput in;
+        in.position = position;
+        in.heading = heading;
+        in.goal = in.source = goal;
+        const ControlDecision c = controller.decide(in);
+        motion = c.motion;
+        next_decision = time + std::max(table.at(c.action).duration, dt);
+        ++decisions;
       }
-      if (out.at_goal) {
-        alpha_at_source.push_back(alpha);  // the source is the goal: the level the character arrives with
+      const float alpha = controller.tick();
+      const MotionRate& r = rates[static_cast<size_t>(motion)];
+      const float stride = 1.0f - table.curve.weight(alpha);  // Eq. 3-4
+      position += stride * dt * (r.forward * forward_of(heading) + r.left * left_of(heading));
+      heading += r.turn * dt;
+      time += dt;
+
+      const glm::vec2 to_goal = goal - position;
+      const float distance = glm::length(to_goal);
+      const bool ahead = glm::dot(to_goal, forward_of(heading)) >= cos45 * distance;
+      if (!seen_1m && distance <= one_metre) {
+        seen_1m = true;
+        const float level = controller.alpha_of_level(controller.alpha_level());  // the state's alpha (Eq. 13)
+        alpha_at_1m.push_back(alpha);
+        if (level >= 0.5f) ++prepared_at_1m;
+        if (alpha >= 0.5f) ++played_prepared_at_1m;
+      }
+      if (!controller.arrived() && ahead && distance - goal_radius <= arrival.radius()) {
+        level_at_arrival.push_back(controller.alpha_of_level(controller.alpha_level()));
+        controller.set_arrived(true);
+      }
+      const bool at_point = ahead && distance <= goal_radius;
+      if (at_point || (controller.arrived() && alpha >= arrival.launch_alpha())) {
+        alpha_at_source.push_back(alpha);
+        steps_to_goal.push_back(decisions);
+        seconds_to_goal.push_back(time);
         ++reached;
-        steps_to_goal.push_back(t + 1);
         break;
       }
     }
-    return_sum += ret;
   }
   if (episodes > 0) {
     e.goal_reached_ratio = static_cast<double>(reached) / episodes;
     e.alpha_at_1m_ratio = static_cast<double>(prepared_at_1m) / episodes;
-    e.mean_return = return_sum / episodes;
+    e.played_alpha_at_1m_ratio = static_cast<double>(played_prepared_at_1m) / episodes;
   }
   e.median_steps_to_goal = median(steps_to_goal);
+  e.median_seconds_to_goal = median(seconds_to_goal);
   e.median_alpha_at_source = median(alpha_at_source);
+  e.median_level_at_arrival = median(level_at_arrival);
+  e.median_alpha_at_1m = median(alpha_at_1m);
   return e;
 }
 

@@ -98,6 +98,25 @@ std::uint64_t fnv1a64(std::string_view bytes) {
   return h;
 }
 
+Policy make_policy(const Params& params, const ActionTable& table, const ActionSpace& actions, const TrainingResult& r,
+                   const std::string& target) {
+  Policy p;
+  p.params_hash = policy_params_hash(params);
+  p.quantization = params.quantization;
+  p.target = target;
+  p.table = table;
+  for (int m = 0; m < actions.motions(); ++m) p.allowed_masks.push_back(actions.allowed_mask(m));
+  p.steps = r.steps;
+  p.episodes = r.episodes;
+  p.converged = r.converged;
+  p.seed = params.sarsa.seed;
+  p.threads = params.sarsa.threads;
+  p.states = static_cast<int>(r.q.size() / static_cast<size_t>(actions.size()));
+  p.actions = actions.size();
+  p.q = r.q;
+  return p;
+}
+
 ActionSpace Policy::action_space() const {
   std::vector<std::vector<int>> next(static_cast<size_t>(table.motions));
   for (int m = 0; m < table.motions; ++m)
@@ -224,8 +243,7 @@ Policy parse_policy(std::string_view bytes, const std::string& source, const Par
     e.left = r.f32("action table");
     e.turn = r.f32("action table");
     e.duration = r.f32("action table");
-    e.cos_turn = std::cos(e.turn);
-    e.sin_turn = std::sin(e.turn);
+    e.precompute();
     p.table.effects.push_back(e);
   }
   p.steps = static_cast<std::int64_t>(r.u64("training record"));

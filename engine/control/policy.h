@@ -25,12 +25,16 @@
 
 #include "engine/control/action_effects.h"
 #include "engine/control/actions.h"
+#include "engine/control/sarsa.h"
 #include "engine/control/state.h"
 #include "engine/params/params.h"
 
 namespace prep {
 
-constexpr std::uint32_t kPolicyFormatVersion = 1;
+// 3: actions of a gait cycle measured along the travel, the goal reached anywhere along an action, starts
+// out to far_start_range (the same bytes, another training problem: older files are refused and caches
+// retrain).
+constexpr std::uint32_t kPolicyFormatVersion = 3;
 
 struct Policy {
   std::uint64_t params_hash = 0;
@@ -49,6 +53,10 @@ struct Policy {
   ActionSpace action_space() const;
   const float* row(int state) const { return q.data() + static_cast<size_t>(state) * static_cast<size_t>(actions); }
 };
+
+// The policy of a training run: the configuration's hash and quantization, the table, Next(m) and Q.
+Policy make_policy(const Params& params, const ActionTable& table, const ActionSpace& actions, const TrainingResult& result,
+                   const std::string& target = "");
 
 std::uint64_t fnv1a64(std::string_view bytes);
 

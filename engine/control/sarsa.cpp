@@ -31,6 +31,7 @@ class Sarsa {
         gamma_(p.discount),
         epsilon_(p.epsilon),
         source_at_goal_(p.source_at_goal_fraction),
+        far_start_range_(p.far_start_range),
         max_episode_steps_(p.max_episode_steps),
         goal_value_(env.reward().max_reward() / (1.0f - p.discount)) {}  // the absorbing goal (reward.h)
 
@@ -70,7 +71,7 @@ class Sarsa {
 
   void episode(Worker& w) const {
     Situation s;
-    env_.exploring_start(w.rng, source_at_goal_, s);
+    env_.exploring_start(w.rng, source_at_goal_, far_start_range_, s);
     int state = env_.quantize(s);
     bool exploring = false;
     int action = choose(w, state, s.motion, exploring);
@@ -97,7 +98,7 @@ class Sarsa {
 
   const Environment& env_;
   size_t actions_;
-  float lr_, gamma_, epsilon_, source_at_goal_;
+  float lr_, gamma_, epsilon_, source_at_goal_, far_start_range_;
   int max_episode_steps_;
   float goal_value_;
 };

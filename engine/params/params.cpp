@@ -40,6 +40,7 @@ template <class F> void fields(QuantizationParams& p, F&& f) {
   f("theta_g_step_deg", p.theta_g_step_deg); f("theta_g_bins", p.theta_g_bins);
   f("theta_i_step_deg", p.theta_i_step_deg); f("theta_i_bins", p.theta_i_bins);
   f("alpha_step", p.alpha_step); f("alpha_levels", p.alpha_levels); f("core_roles", p.core_roles);
+  f("footsteps_per_action", p.footsteps_per_action);
 }
 template <class F> void fields(RewardParams& p, F&& f) {
   f("theta_norm_deg", p.theta_norm_deg); f("d_norm", p.d_norm); f("C_alpha", p.C_alpha);
@@ -51,10 +52,10 @@ template <class F> void fields(SarsaParams& p, F&& f) {
   f("convergence_fraction", p.convergence_fraction); f("convergence_episodes", p.convergence_episodes);
   f("update_tolerance", p.update_tolerance); f("seed", p.seed); f("max_steps", p.max_steps);
   f("threads", p.threads); f("max_episode_steps", p.max_episode_steps);
-  f("source_at_goal_fraction", p.source_at_goal_fraction);
+  f("source_at_goal_fraction", p.source_at_goal_fraction); f("far_start_range", p.far_start_range);
 }
 template <class F> void fields(RuntimeParams& p, F&& f) {
-  f("alpha_sigma_s", p.alpha_sigma_s); f("fixed_dt", p.fixed_dt);
+  f("alpha_sigma_s", p.alpha_sigma_s); f("fixed_dt", p.fixed_dt); f("launch_alpha", p.launch_alpha);
 }
 template <class F> void sections(Params& p, F&& f) {
   f("contacts", p.contacts); f("graph", p.graph); f("reference", p.reference); f("blend", p.blend);

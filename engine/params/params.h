@@ -97,9 +97,16 @@ struct QuantizationParams {
   int theta_i_bins = 4;
   float alpha_step = 0.2f;
   int alpha_levels = 6;           // 0, 0.2, ..., 1.0: 6 levels give the paper's 19,200 states (Table I prints 5)
-  // The graph's core locomotion nodes the controller plays (the m of Eq. 11-12; the paper has four).
-  // Walking forward, turning both ways and standing let the character face, approach and wait.
-  std::vector<std::string> core_roles{"walk", "turn_left", "turn_right", "idle"};
+  // The graph's core locomotion nodes the controller plays (the m of Eq. 11-12; the paper has four). Each
+  // entry is a role (the set's first cyclic clip of it) or a clip name. The paper's core nodes are "the
+  // cyclic walking motions": walking, turning both ways and a slower walk. Standing (idle) is left out on
+  // purpose: Eq. 17 pays 0.85 of its 1.0 for standing still facing the goal, so with the discount of 0.3
+  // a learner that can stand stays where it is rather than pay Eq. 16 on the way in (sarsa.h).
+  std::vector<std::string> core_roles{"walk", "turn_left", "turn_right", "walk_slow"};
+  // An action (Eq. 12) plays its core motion for this many footsteps: 2 = one gait cycle, one loop of a
+  // walk, which is where a hierarchical motion graph passes from one core node to another, and a turn of
+  // one theta_g bin (45 degrees) for the built-in turns. action_effects.h explains why not one footstep.
+  int footsteps_per_action = 2;
 };
 
 // Sec. 6.2: reward, Eq. 14-17.
@@ -111,10 +118,9 @@ struct RewardParams {
   float w_d = 0.3f;
   float w_alpha = 0.6f;
   float goal_radius = 0.4f;       // m: the goal counts as reached within this distance
-  // m: within this radius of the source the character has "reached" it: alpha is forced to 1 (Eq. 13).
-  // Not the goal's 0.4 m: the learner looks only a few footsteps ahead, so a forcing at arrival teaches a
-  // last-moment jump; 0.85 m (about the reach of a kick or a punch) is chosen in engine/control/reward.h.
-  float source_radius = 0.85f;
+  // m: within this radius of the source the character has "reached" it: alpha is forced to 1 (Eq. 13),
+  // in training and, for the controller's state, at run time. Chosen in engine/control/reward.h.
+  float source_radius = 1.0f;
 };
 
 // Sec. 6.3-6.4: SARSA, Eq. 18-19.
@@ -123,7 +129,7 @@ struct SarsaParams {
   float discount = 0.3f;          // gamma in Eq. 18-19
   float epsilon = 0.1f;           // epsilon-greedy
   float convergence_fraction = 0.02f;  // stop when Q updates per episode < this fraction of the states ...
-  int convergence_episodes = 1000;     // ... in this many consecutive episodes
+  int convergence_episodes = 5000;     // ... in a round of this many episodes (sarsa.h)
   float update_tolerance = 1e-4f; // a Q change smaller than this does not count as an update
   std::uint64_t seed = 1;
   std::int64_t max_steps = 200000000;
@@ -132,12 +138,18 @@ struct SarsaParams {
   // Sec. 6.1: goal and source are "usually identical"; this fraction of the training episodes puts the
   // source on the goal, the rest place it independently (Fig. 9), so both kinds of state are explored.
   float source_at_goal_fraction = 0.5f;
+  // Exploring starts in the last distance bin ("that far or farther") are drawn out to this multiple of
+  // the quantized range (d_step x bins), the distances prep evaluate-policy starts from (environment.h).
+  float far_start_range = 2.0f;
 };
 
 // Sec. 6 at run time and the simulation loop.
 struct RuntimeParams {
   float alpha_sigma_s = 0.25f;    // s: sigma of the Gaussian filter over alpha
   float fixed_dt = 1.0f / 60.0f;  // s: engine tick
+  // Arrival at the source (engine/control/arrival.h): the smoothed alpha at which a character that has
+  // come to its launch point is prepared enough to launch the target motion where it stands.
+  float launch_alpha = 0.9f;
 };
 
 struct Params {

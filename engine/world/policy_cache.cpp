@@ -60,20 +60,7 @@ Policy train_policy(const MotionSet& set, const MotionGraph& graph, const Params
   const Environment env(states, actions, table, params.reward);
   const TrainingResult r = train_sarsa(env, params.sarsa, options);
 
-  Policy p;
-  p.params_hash = policy_params_hash(params);
-  p.quantization = params.quantization;
-  p.table = table;
-  for (int m = 0; m < actions.motions(); ++m) p.allowed_masks.push_back(actions.allowed_mask(m));
-  p.steps = r.steps;
-  p.episodes = r.episodes;
-  p.converged = r.converged;
-  p.seed = params.sarsa.seed;
-  p.threads = params.sarsa.threads;
-  p.states = states.size();
-  p.actions = actions.size();
-  p.q = r.q;
-  return p;
+  return make_policy(params, table, actions, r);
 }
 
 std::string default_policy_cache_dir() {

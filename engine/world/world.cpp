@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "engine/control/action_effects.h"
+#include "engine/control/arrival.h"
 #include "engine/graph/reference_posture.h"
 #include "engine/library/builtin.h"
 #include "engine/library/generated.h"
@@ -171,6 +172,11 @@ struct World::Runtime {
   float fade_total = 0.0f;
   int target_object = -1, target_character = -1;
   bool struck = false;           // the target movement (T_t) was reached
+  // The source as last seen (for its speed toward the character and to notice a change of source).
+  int source_key = -2;           // object index, or -(character index) - 3, or -2 for none
+  glm::vec2 source_position{0.0f};
+  float source_closing_speed = 0.0f;  // m/s toward the character (> 0 closing in)
+  bool approach_seen = false, approach_from_far = false;  // the approach to it began more than 1 m away
   std::vector<glm::vec3> positions, centroids;
   std::vector<glm::quat> rotations;
 };
@@ -180,6 +186,7 @@ World::World(const Scenario& scenario, std::shared_ptr<const WorldAssets> assets
       policy_(assets_->policy), auto_launch_(scenario.auto_launch) {
   if (!policy_) throw std::invalid_argument("world: the assets hold no policy (train or load one first)");
   if (scenario_.user() < 0) throw std::invalid_argument("world: the scenario has no user character");
+  arrival_ = std::make_unique<ArrivalModel>(policy_->table, policy_->quantization.alpha_step, params_.runtime);
 
   auto add_character = [&](glm::vec2 position, float heading, Control control, TargetAction met_with, int object) {
     WorldCharacter c;
@@ -225,11 +232,13 @@ void World::set_params(const Params& params) {
   params_ = params;
   synthesizer_ = std::make_shared<const Synthesizer>(*assets_->set, params_);
   for (auto& rt : runtime_) rt->scratch = synthesizer_->make_scratch();
+  arrival_ = std::make_unique<ArrivalModel>(policy_->table, policy_->quantization.alpha_step, params_.runtime);
 }
 
 void World::set_policy(std::shared_ptr<const Policy> policy) {
   if (!policy) throw std::invalid_argument("world: no policy given");
   policy_ = std::move(policy);
+  arrival_ = std::make_unique<ArrivalModel>(policy_->table, policy_->quantization.alpha_step, params_.runtime);
   for (size_t i = 0; i < runtime_.size(); ++i) {
     const int motion = runtime_[i]->controller->motion(), level = runtime_[i]->controller->alpha_level();
     runtime_[i]->controller = std::make_unique<Controller>(policy_, params_);
@@ -378,29 +387,34 @@ void World::choose_source(int index) {
   }
 }
 
-// The controller: a decision per footstep (the duration of the chosen action), and the motion stream kept
-// one motion ahead.
+// The controller: a decision per action (its duration in the action table; none while arriving), and the
+// motion stream kept one motion ahead.
 void World::control(int index) {
   WorldCharacter& c = characters_[static_cast<size_t>(index)];
   Runtime& rt = *runtime_[static_cast<size_t>(index)];
   Controller& ctl = *rt.controller;
-  if (time_ >= rt.next_decision) {
+  if (time_ >= rt.next_decision && !ctl.arrived()) {
     ControlInput in;
     in.position = c.position;
     in.heading = c.heading;
     if (c.control == Control::Opponent) in.goal = c.has_source ? c.source : c.position;
     else in.goal = c.goal.empty() ? c.position : c.goal.front();
-    // No source: one far ahead, beyond the last distance bin, so nothing calls for preparation.
-    in.source = c.has_source ? c.source : c.position + 100.0f * forward_of(c.heading);
+    // Unattended (auto), the user meets the opponent that is its source, as a player steering with the
+    // keys would: its launch point is the goal until it is defeated (world.h).
+    if (c.control == Control::User && auto_launch_ && c.source_character >= 0) in.goal = c.source;
+    // No source: one far behind, beyond the last distance bin, never to be reached (world.h).
+    in.source = c.has_source ? c.source : c.position - 100.0f * forward_of(c.heading);
+    ctl.set_level_cap(preparation_ ? -1 : 0);  // the naive baseline chooses among what it plays (controller.h)
     const ControlDecision d = ctl.decide(in);
     c.motion = d.motion;
     c.chosen_alpha = d.alpha;
     rt.next_decision = time_ + std::max(ctl.effect(d.action).duration, params_.runtime.fixed_dt);
-    // The controller acts per footstep (Sec. 6's actions), but the graph's edges between two core clips
-    // come about once per gait cycle: waiting for one would play the old motion for up to two more steps
-    // (and turn the character past its goal). So a new core motion starts at once, entered at the frame of
-    // its loop that best matches the frame playing (the graph's point-cloud distance) and cross-faded over
-    // GraphParams::blend_s. Loops and the returns from target motions still follow graph edges.
+    // The controller acts per action (Sec. 6's actions, one gait cycle each), but the graph's edges
+    // between two core clips come where the clips match, not where an action ends: waiting for one would
+    // play the old motion for up to a cycle more (and turn the character past its goal). So a new core
+    // motion starts at once, entered at the frame of its loop that best matches the frame playing (the
+    // graph's point-cloud distance) and cross-faded over GraphParams::blend_s. Loops and the returns from
+    // target motions still follow graph edges.
     const bool stay = (c.control == Control::User && c.reached_goal) || (c.control == Control::Opponent && c.defeated);
     const int wanted = stay ? assets_->idle_node : assets_->core_nodes[static_cast<size_t>(d.motion)];
     if (wanted != rt.stream.node()) {
@@ -436,6 +450,12 @@ bool World::start_target(int index, TargetAction action, int object, int target_
   r.alpha_at_launch = c.alpha;
   r.time = time_;
   r.automatic = automatic;
+  const bool at_source = (object >= 0 && object == c.source_object) || (target_character >= 0 && target_character == c.source_character);
+  if (at_source) {
+    r.level_at_arrival = c.level_at_arrival;
+    r.alpha_at_1m = c.alpha_at_1m;
+    r.miss = std::isfinite(c.to_launch) ? c.to_launch : 0.0f;
+  }
   launches_.push_back(r);
   if (object >= 0) objects_[static_cast<size_t>(object)].used = true;
 
@@ -467,34 +487,87 @@ bool World::launch(TargetAction action) {
 
 void World::try_auto_launch(int index) {
   WorldCharacter& c = characters_[static_cast<size_t>(index)];
-  if (c.in_target || !c.has_source) return;
+  if (c.in_target || !c.has_source || !c.source_ahead) return;
   if (c.control == Control::User && !auto_launch_) return;
   if (c.control == Control::Opponent && (c.defeated || time_ - c.last_attack < rules_.cooldown_s)) return;
-  const TargetMotion& t = assets_->target(c.prepared_for);
-  if (t.clip < 0) return;
-  const glm::vec2 fwd = forward_of(c.heading);
-  const glm::vec2 to_object = c.source_object_position - c.position;
-  // Fully prepared (alpha = 1 stops the stride, Eq. 3-4) within the source radius: it has arrived.
-  const bool stalled = c.chosen_alpha >= 1.0f;
-  bool go = false;
-  if (c.source_object >= 0 && is_across(objects_[static_cast<size_t>(c.source_object)].spec.type)) {
-    // The launch line: the character's distance to it along the approach.
-    const glm::vec2 approach = c.source_object_position - c.source;  // reach * approach direction
-    const float len = glm::length(approach);
-    if (len > 1e-4f) {
-      const glm::vec2 dir = approach / len;
-      const float along = glm::dot(to_object, dir);
-      go = glm::dot(fwd, dir) >= kCos45 && along > 0.0f && (along <= t.reach || (stalled && along <= t.reach + params_.reward.source_radius));
-    }
-  } else {
-    const float d = glm::length(to_object);
-    const float ahead = glm::dot(to_object, fwd);
-    // A character or a ball: within reach (and the source radius for a target that moves), ahead.
-    go = ahead >= kCos45 * d && d > 0.0f && (d <= t.reach || ((stalled || c.source_character >= 0) && d <= t.reach + params_.reward.source_radius));
-  }
-  if (!go) return;
+  if (assets_->target(c.prepared_for).clip < 0) return;
+  // On the launch point, or arrived and prepared enough to launch where it stands (world.h, arrival.h).
+  const bool on_point = c.to_launch <= 0.0f;
+  const bool ready = c.arrived && c.alpha >= params_.runtime.launch_alpha;
+  if (!on_point && !ready) return;
   if (start_target(index, c.prepared_for, c.source_object, c.source_character, true) && c.control == Control::Opponent)
     c.last_attack = time_;
+}
+
+// Arrival at the launch point (engine/control/arrival.h): how far the character still has to go along the
+// approach, whether the source lies ahead, and the forcing of the played alpha once within the arrival
+// radius. Runs after the tick's pose, so the next tick plays the forced alpha.
+void World::update_arrival(int index) {
+  WorldCharacter& c = characters_[static_cast<size_t>(index)];
+  Runtime& rt = *runtime_[static_cast<size_t>(index)];
+  Controller& ctl = *rt.controller;
+  const float dt = params_.runtime.fixed_dt;
+  const int key = !c.has_source ? -2 : c.source_object >= 0 ? c.source_object : -c.source_character - 3;
+  if (key != rt.source_key) {  // another source (or none): its approach starts afresh
+    rt.source_key = key;
+    rt.source_position = c.source_object_position;
+    rt.source_closing_speed = 0.0f;
+    rt.approach_seen = false;
+    c.level_at_arrival = c.alpha_at_1m = -1.0f;
+    if (ctl.arrived()) ctl.set_arrived(false);
+  }
+  c.to_launch = std::numeric_limits<float>::infinity();
+  c.source_ahead = false;
+  if (c.has_source && !c.in_target) {
+    const TargetMotion& t = assets_->target(c.prepared_for);
+    const glm::vec2 fwd = forward_of(c.heading);
+    const glm::vec2 to_object = c.source_object_position - c.position;
+    const float d = glm::length(to_object);
+    if (c.source_object >= 0 && is_across(objects_[static_cast<size_t>(c.source_object)].spec.type)) {
+      // Along the obstacle's normal, from the character's side (as launch_point() places the point).
+      glm::vec2 n = forward_of(objects_[static_cast<size_t>(c.source_object)].spec.heading);
+      if (glm::dot(to_object, n) < 0.0f) n = -n;
+      const float along = glm::dot(to_object, n);
+      c.to_launch = along - t.reach;
+      c.source_ahead = along > 0.0f && glm::dot(fwd, n) >= kCos45;
+    } else if (d > 1e-4f) {
+      c.to_launch = d - t.reach;
+      c.source_ahead = glm::dot(to_object, fwd) >= kCos45 * d;
+    }
+    // How fast the source itself comes toward the character (an opponent walking in), smoothed over about
+    // a gait cycle (the root sways within one).
+    if (d > 1e-4f) {
+      const float closing = -glm::dot(c.source_object_position - rt.source_position, to_object / d) / dt;
+      const float k = dt / (dt + 0.5f);
+      rt.source_closing_speed += k * (std::max(0.0f, closing) - rt.source_closing_speed);
+    }
+    rt.source_position = c.source_object_position;
+    // The alpha 1 m before the launch point, for an approach that began farther away (one that starts
+    // closer, e.g. out of the previous obstacle's clip, has no such moment: left at -1).
+    if (!rt.approach_seen) {
+      rt.approach_seen = true;
+      rt.approach_from_far = c.to_launch > 1.0f;
+    }
+    if (rt.approach_from_far && c.alpha_at_1m < 0.0f && c.to_launch <= 1.0f) c.alpha_at_1m = c.alpha;
+  }
+  // Without preparation (the naive baseline, set_preparation) synthesis ignores alpha, so nothing would
+  // stop the character: it walks on to the launch point and launches there.
+  // A character whose policy has itself chosen the top level inside the source radius has stopped there
+  // (w_r = 1, Eq. 3-4): it has arrived as near as it will get, and launches where it stands (the shortfall
+  // is the launch's miss). Seen with slow core walks, whose stride at 0.8 does not pay for moving on
+  // inside the radius (reward.h).
+  const bool stopped = ctl.alpha_level() == ctl.policy().table.alpha_levels - 1;
+  const bool within = preparation_ && c.source_ahead &&
+                      (c.to_launch <= arrival_->radius(rt.source_closing_speed) ||
+                       ((stopped || ctl.arrived()) && c.to_launch <= params_.reward.source_radius));
+  if (within && !ctl.arrived()) {
+    c.level_at_arrival = ctl.alpha_of_level(ctl.alpha_level());
+    ctl.set_arrived(true);
+  } else if (!within && ctl.arrived()) {
+    ctl.set_arrived(false);
+  }
+  c.arrived = ctl.arrived();
+  if (c.arrived) c.chosen_alpha = 1.0f;
 }
 
 void World::update_goal(int index) {
@@ -540,11 +613,12 @@ void World::step_character(int index) {
   if (c.in_target) {
     const MotionClip& mc = assets_->set->clips[static_cast<size_t>(c.clip)];
     if (rt.stream.node() != c.clip) {
-      // Back to locomotion through the graph edge: the controller resumes from the core motion playing.
+      // Back to locomotion through the graph edge: the controller resumes from the core motion playing, at
+      // alpha 0 (the edge leads into the plain locomotion, world.h).
       c.in_target = false;
       const auto core = std::find(assets_->core_nodes.begin(), assets_->core_nodes.end(), rt.stream.node());
       rt.controller->reset(core == assets_->core_nodes.end() ? rt.controller->motion() : static_cast<int>(core - assets_->core_nodes.begin()),
-                           rt.controller->alpha_level());
+                           0);
       rt.next_decision = time_;
       rt.reseed = true;
       rt.fade_from = c.pose;
@@ -611,6 +685,7 @@ void World::step_character(int index) {
   stage_times_.synthesis_ms += ms_between(synthesis_start, balance_start);
   update_balance(index);
   update_goal(index);
+  update_arrival(index);
   try_auto_launch(index);
   stage_times_.balance_ms += ms_between(balance_start, StageClock::now());
 }
@@ -687,6 +762,9 @@ std::string summary_json(const RunSummary& summary, const World& world) {
     l["character"] = r.character;
     l["control"] = control_name(world.characters()[static_cast<size_t>(r.character)].control);
     l["automatic"] = r.automatic;
+    if (r.level_at_arrival >= 0.0f) l["level_at_arrival"] = r.level_at_arrival;
+    if (r.alpha_at_1m >= 0.0f) l["alpha_at_1m"] = r.alpha_at_1m;
+    l["miss"] = r.miss;
     if (r.object >= 0) l["object"] = r.object;
     if (r.target_character >= 0) l["target_character"] = r.target_character;
     j["launches"].push_back(l);
@@ -699,10 +777,14 @@ std::string summary_json(const RunSummary& summary, const World& world) {
 
 std::string summary_text(const RunSummary& summary) {
   std::string out = "scenario " + summary.scenario + ", " + std::to_string(summary.seconds) + " s\n";
-  char line[160];
+  char line[224];
   for (const LaunchRecord& r : summary.launches) {
-    std::snprintf(line, sizeof line, "  %6.2f s  character %d  %-11s alpha_at_launch %.3f%s\n", r.time, r.character,
-                  target_action_name(r.action), r.alpha_at_launch, r.automatic ? "  (auto)" : "");
+    char at_1m[16] = "-", level[16] = "-";  // -1: the approach began within 1 m / no arrival
+    if (r.alpha_at_1m >= 0.0f) std::snprintf(at_1m, sizeof at_1m, "%.2f", r.alpha_at_1m);
+    if (r.level_at_arrival >= 0.0f) std::snprintf(level, sizeof level, "%.1f", r.level_at_arrival);
+    std::snprintf(line, sizeof line, "  %6.2f s  character %d  %-11s alpha_at_launch %.3f  (1 m before: %s, level on arrival %s, miss %+.2f m)%s\n",
+                  r.time, r.character, target_action_name(r.action), r.alpha_at_launch, at_1m, level, r.miss,
+                  r.automatic ? "  (auto)" : "");
     out += line;
   }
   if (summary.goal_reached) {

@@ -3,27 +3,45 @@
 //
 // Per tick and per character:
 //   source of influence (kick: the ball; fight: the closest opponent; obstacles: the closest obstacle in the
-//   facing direction) -> controller (a = {m, alpha}, Sec. 6, one decision per footstep) -> Gaussian-smoothed
+//   facing direction) -> controller (a = {m, alpha}, Sec. 6, one decision per action) -> Gaussian-smoothed
 //   alpha -> the motion stream plays m through the motion graph -> Synthesizer::step (blend toward the T_p of
 //   the action the source calls for, trajectory, foot IK, balance) -> pose.
 //
 // Choices where the paper leaves it open (each also stated where it is coded):
 // - The source point the controller sees is the launch point of the object: where the character must
 //   stand, facing the object, for the target clip entered at its T_p frame to meet the object (a bar
-//   passes over the crawl, the foot meets the ball). "Reaching the source" (alpha forced to 1 in training)
-//   is thus reaching the spot where the action starts.
+//   passes over the crawl, the foot meets the ball). The controller's state there is the training's:
+//   within RewardParams::source_radius of it the state's alpha is 1 (controller.h).
+// - Arrival (engine/control/arrival.h): once the launch point, ahead, is within the arrival radius, the
+//   played alpha is forced to 1 (Sec. 6.2's forcing "when the character reaches the source"); the
+//   smoothed alpha rises, Eq. 3-4 fade the stride out and the character glides to a stop on the launch
+//   point. No decisions are taken meanwhile. The arrival ends when the source changes or moves out of the
+//   radius.
 // - A launch (user or auto) restarts the character's stream at the target clip's T_p frame, root placed
 //   where the character stands and facing where it faces: the prepared posture is T_p (alpha -> 1), so
 //   this entry is continuous; the remaining difference is cross-faded over GraphParams::blend_s. The
 //   target clip then returns to locomotion through a graph edge after T_t (MotionStream).
-// - Auto launch: when the object lies ahead (within 45 degrees of the facing) and its distance along the
-//   approach is at most the action's reach (the distance from the T_p root to the object in the clip),
-//   laterally within the obstacle's width (balls and opponents: within the source radius).
+// - Auto launch: with the object ahead (within 45 degrees of the facing), when the character is on its
+//   launch point (its distance along the approach is at most the action's reach, the distance from the T_p
+//   root to the object in the clip) or, arrived, as soon as its smoothed alpha reaches
+//   RuntimeParams::launch_alpha. So alpha_at_launch is what the approach delivered: a character that
+//   comes in fast passes the point before the forcing has raised its alpha.
+// - After a target motion the controller resumes at alpha 0: the clip's graph edge leads into the plain
+//   core locomotion, which is what alpha 0 plays; if the next source is near, the policy prepares again.
+// - No source: the controller is shown one 100 m behind the character, a source it walks away from and
+//   never reaches (beyond the last distance bin, behind), the state in which training learned that
+//   nothing calls for preparation. (One 100 m ahead would share its state with every source beyond the
+//   quantized range, 1.6 m or more ahead, for which the policy has learned to start preparing.)
 // - Objects are used once (a kicked ball rolls away; a punched opponent stops fighting); obstacles behind
 //   the character or already passed stop being sources.
 // - Opponents: their own controller (the same policy) with the user's character as goal and source
-//   (the point at punch reach in front of it); they launch a punch when the user is within reach, at most
-//   once per OpponentRules::cooldown_s.
+//   (the point at punch reach in front of it); they arrive and launch by the same rules, at most once per
+//   OpponentRules::cooldown_s. For a source that moves (an opponent for the user, the user for an
+//   opponent) the arrival radius grows by what it covers toward the character meanwhile (arrival.h).
+// - Unattended (auto on), a user whose source is an opponent takes that opponent's launch point as its goal
+//   until it is defeated, as a player steering with the keys would (Sec. 7.2: "the user uses the keyboard
+//   to indicate the goal"); the scenario's goal comes back after. The controller's goal is only its own
+//   steering; reaching the scenario's goal is still judged on the scenario's goal.
 #pragma once
 
 #include <memory>
@@ -73,6 +91,8 @@ struct WorldAssets {
   const TargetMotion& target(TargetAction a) const { return targets[static_cast<size_t>(a)]; }
 };
 
+class ArrivalModel;
+
 // Builds the graph, the T_p and reach of every target action and the synthesizer. The policy is set apart
 // (policy_cache.h). Throws InputError naming the set when a core role has no cyclic clip.
 WorldAssets make_world_assets(std::shared_ptr<const MotionSet> set, const Params& params);
@@ -93,6 +113,10 @@ struct LaunchRecord {
   float alpha_at_launch = 0;  // the smoothed alpha synthesis used on the tick of the launch
   float time = 0;             // world time (s)
   bool automatic = false;     // by the scenario's auto flag or an opponent's rules (not the user)
+  // The approach, for judging the preparation behind alpha_at_launch (-1: not seen for this source):
+  float level_at_arrival = -1;  // the level the controller had chosen itself when the arrival began
+  float alpha_at_1m = -1;       // the smoothed alpha when the launch point first came within 1 m
+  float miss = 0;               // m: distance still to go to the launch point (< 0: past it) at the launch
 };
 
 struct OpponentRules {
@@ -129,6 +153,14 @@ struct WorldCharacter {
   int source_object = -1;               // index into objects(), or -1
   int source_character = -1;            // index into characters(), or -1
   TargetAction prepared_for = TargetAction::Kick;  // whose T_p the synthesis blends toward
+  // Arrival at the launch point (engine/control/arrival.h): the distance still to go to it along the
+  // approach (< 0: past it; infinite without a source), whether the source lies ahead, and whether the
+  // character has arrived (its played alpha forced to 1).
+  float to_launch = 0.0f;
+  bool source_ahead = false;
+  bool arrived = false;
+  float level_at_arrival = -1.0f;  // for the launch record (LaunchRecord)
+  float alpha_at_1m = -1.0f;
 
   std::vector<glm::vec2> goal;  // waypoints left (front = current); empty when the last was reached
   bool reached_goal = false;
@@ -237,6 +269,7 @@ class World {
   bool start_target(int index, TargetAction action, int object, int target_character, bool automatic);
   void try_auto_launch(int index);
   void update_goal(int index);
+  void update_arrival(int index);
   void update_balance(int index);
   glm::vec2 launch_point(int index, glm::vec2 object, float object_heading, bool across, TargetAction action) const;
 
@@ -258,6 +291,7 @@ class World {
   std::vector<glm::vec2> alpha_history_;
   int picked_source_ = -1;
   StageTimes stage_times_;
+  std::unique_ptr<ArrivalModel> arrival_;  // from the policy's table and the runtime Params
 };
 
 // A headless run: the scenario for `seconds`, launches and goal (what `prep run` and `prep-demo --json` print).

@@ -6,6 +6,7 @@
 
 #include "engine/control/controller.h"
 #include "engine/control/sarsa.h"
+#include "engine/control/state.h"
 #include "hand_made.h"
 
 using namespace prep;
@@ -40,14 +41,7 @@ TEST_CASE("the runtime controller takes the greedy action and feeds its alpha ba
   const auto world = test::hand_made_world(params);
   const Environment env = test::make_environment(params, world.table);
   const TrainingResult r = train_sarsa(env, params.sarsa);
-  auto policy = std::make_shared<Policy>();
-  policy->params_hash = policy_params_hash(params);
-  policy->quantization = params.quantization;
-  policy->table = world.table;
-  for (int m = 0; m < env.states().motions(); ++m) policy->allowed_masks.push_back(env.actions().allowed_mask(m));
-  policy->states = env.states().size();
-  policy->actions = env.actions().size();
-  policy->q = r.q;
+  const auto policy = test::hand_made_policy(params, world, r.q);
   Controller c(policy, params);
   c.reset(3, 0);
   ControlInput in;
@@ -68,4 +62,48 @@ TEST_CASE("the runtime controller takes the greedy action and feeds its alpha ba
   CHECK(bank.for_curve(world.table.curve).get() == policy.get());
   CHECK(bank.for_curve(RootCurve{1.0f, 1.0f, false}).get() == nullptr);
   CHECK_THROWS_AS(bank.add(policy), std::invalid_argument);
+}
+
+TEST_CASE("at run time the state's alpha is forced to 1 within the source radius, as in training") {
+  const Params params;
+  const auto world = test::hand_made_world(params);
+  const StateSpace states(params.quantization);
+  const ActionSpace actions(states.motions(), states.alpha_levels());
+  std::vector<float> q(static_cast<size_t>(states.size()) * static_cast<size_t>(actions.size()), 0.0f);
+  for (int s = 0; s < states.size(); ++s) q[static_cast<size_t>(s) * actions.size() + static_cast<size_t>(actions.index({0, 4}))] = 1.0f;
+  Controller c(test::hand_made_policy(params, world, q), params);
+  c.reset(0, 2);
+  ControlInput in;
+  in.goal = {0.0f, 5.0f};
+  in.source = {0.0f, 1.5f};  // outside the 1 m radius: the state keeps its alpha (level 2)
+  ControlDecision d = c.decide(in);
+  CHECK_FALSE(d.at_source);
+  CHECK(states.decode(d.state).alpha == 2);
+  CHECK(d.alpha_level == 4);
+  in.source = {0.0f, 0.9f};  // inside: decided in the state whose alpha is 1
+  d = c.decide(in);
+  CHECK(d.at_source);
+  CHECK(states.decode(d.state).alpha == states.top_alpha_level());
+  CHECK(d.alpha_level == 4);  // and it plays the action's level (Eq. 13)
+  CHECK(c.alpha_of_level(c.alpha_level()) == doctest::Approx(0.8));
+  // Within the goal radius nothing was learned (episodes end there): the action playing is kept.
+  c.reset(1, 3);
+  in.goal = {0.0f, 0.3f};
+  d = c.decide(in);
+  CHECK(d.at_goal);
+  CHECK(d.state == -1);
+  CHECK(d.motion == 1);
+  CHECK(d.alpha_level == 3);
+  // Arrived: the played alpha is 1, the filter rises from where it was to exactly 1 after its last tap.
+  c.reset(0, 4);
+  c.set_arrived(true);
+  CHECK(c.alpha_level() == states.top_alpha_level());
+  float a = c.tick();
+  CHECK(a > 0.8f);
+  CHECK(a < 0.85f);
+  for (int k = 0; k < 60; ++k) a = c.tick();
+  CHECK(a == doctest::Approx(1.0));
+  c.reset(0, 0);
+  CHECK_FALSE(c.arrived());
+  CHECK(c.tick() == doctest::Approx(0.0));
 }

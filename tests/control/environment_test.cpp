@@ -61,38 +61,56 @@ TEST_CASE("reaching the source forces alpha to 1 and reaching the goal ends the 
   const Params params;
   const auto world = test::hand_made_world(params);
   const Environment env = test::make_environment(params, world.table);
-  REQUIRE(params.reward.source_radius == doctest::Approx(0.85));
-  // Source 1.3 m ahead, goal 3 m ahead: a walk footstep at alpha 0 (0.6 m) ends 0.7 m from the source.
-  Situation s = make_situation({0, 0}, 0.0f, {0, 3}, {0, 1.3f}, 2, 0);
+  REQUIRE(params.reward.source_radius == doctest::Approx(1.0));
+  // Source 2 m ahead, goal 4 m ahead: a walk action at alpha 0 (1.5 m) ends 0.5 m from the source.
+  Situation s = make_situation({0, 0}, 0.0f, {0, 4}, {0, 2.0f}, 2, 0);
   const StepOutcome out = env.step(s, env.actions().index({0, 0}));
   CHECK(out.at_source);
   CHECK_FALSE(out.at_goal);
   CHECK(s.alpha_level == env.states().top_alpha_level());
-  CHECK(out.reward == doctest::Approx(reward_terms(0.0f, 3.0f, 2.4f, 0.4f, 0.0f, true, params.reward).total).epsilon(1e-5));
-  // Still within the radius after a short footstep at 0.8: forced again, both changes of alpha penalised.
+  CHECK(out.reward == doctest::Approx(reward_terms(0.0f, 4.0f, 2.5f, 0.4f, 0.0f, true, params.reward).total).epsilon(1e-5));
+  // Still within the radius after a short action at 0.8: forced again, both changes of alpha penalised.
   const StepOutcome inside = env.step(s, env.actions().index({0, 4}));
   CHECK(inside.at_source);
   CHECK(s.alpha_level == env.states().top_alpha_level());
-  CHECK(inside.reward == doctest::Approx(reward_terms(0.0f, 2.4f, s.d_g, 1.0f, 0.8f, true, params.reward).total).epsilon(1e-5));
+  CHECK(inside.reward == doctest::Approx(reward_terms(0.0f, 2.5f, s.d_g, 1.0f, 0.8f, true, params.reward).total).epsilon(1e-5));
   // Past the source and out of its radius: Eq. 13 as usual.
   Situation away = make_situation({0, 0}, 0.0f, {0, 3}, {0, -0.7f}, 5, 0);
   const StepOutcome leaving = env.step(away, env.actions().index({0, 2}));
   CHECK_FALSE(leaving.at_source);
   CHECK(away.alpha_level == 2);
-  Situation g = make_situation({0, 0}, 0.0f, {0, 0.7f}, {0, 0.7f}, 2, 0);
-  CHECK(env.step(g, env.actions().index({0, 0})).at_goal);
 }
 
-TEST_CASE("exploring starts cover every reachable bin and never start at the goal") {
+TEST_CASE("a goal the action walks through is reached where the character passes it") {
   const Params params;
+  const auto world = test::hand_made_world(params);
+  const Environment env = test::make_environment(params, world.table);
+  // The goal 0.7 m ahead: the 1.5 m action ends 0.8 m beyond it (outside the 0.4 m radius), but passes it.
+  Situation g = make_situation({0, 0}, 0.0f, {0, 0.7f}, {0, 0.7f}, 2, 0);
+  const StepOutcome through = env.step(g, env.actions().index({0, 0}));
+  CHECK(through.at_goal);
+  // The character stops there: Eq. 15 with d_g' = 0 (and Eq. 14 with the bearing at the action's end).
+  CHECK(through.reward == doctest::Approx(reward_terms(0.0f, 0.7f, 0.0f, 0.4f, 0.0f, true, params.reward).total).epsilon(1e-5));
+  // A goal 0.5 m to the side of the path is passed by, not reached.
+  Situation beside = make_situation({0, 0}, 0.0f, {0.5f, 0.7f}, {0, -50.0f}, 0, 0);
+  CHECK_FALSE(env.step(beside, env.actions().index({0, 0})).at_goal);
+  // An action that does not move reaches only a goal already within the radius (never the case in training).
+  Situation still = make_situation({0, 0}, 0.0f, {0, 0.7f}, {0, -50.0f}, 5, 0);
+  CHECK_FALSE(env.step(still, env.actions().index({0, 5})).at_goal);
+}
+
+TEST_CASE("exploring starts cover every reachable bin, the last one out to twice the range, never at the goal") {
+  const Params params;
+  REQUIRE(params.sarsa.far_start_range == doctest::Approx(2.0));
   const auto world = test::hand_made_world(params);
   const Environment env = test::make_environment(params, world.table);
   Rng rng(7);
   std::vector<int> dg(5, 0), tg(8, 0), ti(4, 0), alpha(6, 0);
-  int same = 0;
+  int same = 0, beyond_range = 0;
+  float farthest = 0.0f;
   for (int i = 0; i < 20000; ++i) {
     Situation s;
-    env.exploring_start(rng, 0.5f, s);
+    env.exploring_start(rng, 0.5f, params.sarsa.far_start_range, s);
     CHECK(s.d_g >= params.reward.goal_radius);
     const StateBins b = env.states().decode(env.quantize(s));
     ++dg[b.d_g];
@@ -100,6 +118,8 @@ TEST_CASE("exploring starts cover every reachable bin and never start at the goa
     ++ti[b.theta_i];
     ++alpha[b.alpha];
     if (s.source_left == s.goal_left && s.source_forward == s.goal_forward) ++same;
+    if (s.d_g > 2.0f) ++beyond_range;
+    farthest = std::max(farthest, std::max(s.d_g, s.d_i));
   }
   CHECK(dg[0] == 0);  // inside the goal radius (0.4 m = the first bin)
   for (int k = 1; k < 5; ++k) CHECK(dg[k] > 4000);
@@ -107,6 +127,18 @@ TEST_CASE("exploring starts cover every reachable bin and never start at the goa
   for (int k = 0; k < 4; ++k) CHECK(ti[k] > 4000);
   for (int k = 0; k < 6; ++k) CHECK(alpha[k] > 3000);
   CHECK(same == doctest::Approx(10000).epsilon(0.05));
+  // The last bin [1.6, 4.0): 5/6 of its starts lie beyond the 2 m of the quantized range.
+  CHECK(beyond_range == doctest::Approx(dg[4] * 5.0 / 6.0).epsilon(0.05));
+  CHECK(farthest < 4.0f);
+  CHECK(farthest > 3.9f);
+  // far_start_range 1: the last bin keeps its own width.
+  Rng again(7);
+  for (int i = 0; i < 2000; ++i) {
+    Situation s;
+    env.exploring_start(again, 0.5f, 1.0f, s);
+    CHECK(s.d_g < 2.0f);
+    CHECK(s.d_i < 2.0f);
+  }
 }
 
 TEST_CASE("Next(m) restricts the actions") {

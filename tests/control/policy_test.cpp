@@ -47,7 +47,8 @@ TEST_CASE("a policy survives a round trip through its file") {
   CHECK(q.table.motion_names == p.table.motion_names);
   CHECK(q.table.at(3).forward == p.table.at(3).forward);
   CHECK(q.table.curve == p.table.curve);
-  CHECK(q.quantization.core_roles == params.quantization.core_roles);
+  CHECK(q.table.motion_roles == p.table.motion_roles);
+  CHECK(q.quantization.core_roles == p.table.motion_roles);  // the file keeps each core clip's role
   CHECK(q.steps == 1234);
   CHECK(q.converged);
   CHECK(serialize_policy(q) == serialize_policy(p));
