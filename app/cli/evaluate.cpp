@@ -210,11 +210,11 @@ void run(const Options& o) {
     const prep::Params base = o.params.empty() ? prep::load_scenario_params(scenario) : prep::load_params(o.params);
     const auto set = prep::load_scenario_motions(scenario, base);
     const prep::EvaluationReference reference(*set);
-    if (!baselines.count(scenario.motions)) {
+    if (!baselines.count(set->name)) {
       std::string line;
       for (const prep::MotionClip* c : prep::core_clips(*set, base.quantization))
         line += (line.empty() ? "" : ", ") + c->clip.name + " " + fixed(prep::clip_foot_skate_cm_per_frame(*set, *c, reference), 3);
-      baselines[scenario.motions] = line;
+      baselines[set->name] = line;
     }
     std::vector<const prep::Evaluation*> scenario_runs;
     const size_t first = runs.size();

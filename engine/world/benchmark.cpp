@@ -101,6 +101,7 @@ SarsaBenchmark benchmark_sarsa(const MotionSet& set, const Params& params, std::
   const Environment env(states, actions, table, params.reward);
   SarsaParams sp = params.sarsa;
   sp.max_steps = max_steps;
+  sp.convergence_fraction = 0.0f;  // a fixed amount of work: convergence (after ~9 M steps here) would cut it short
   TrainingOptions options;
   options.curve_every_steps = max_steps;  // the curve costs a scan of the table per point: keep it out
   const TrainingResult r = train_sarsa(env, sp, options);

@@ -37,8 +37,8 @@ struct SarsaBenchmark {
   double steps_per_cpu_second = 0;  // per core
   bool converged = false;
 };
-// Trains from scratch on the set's core locomotion with `params` (the paper's configuration by default),
-// for at most max_steps steps.
+// Trains from scratch on the set's core locomotion with `params` (the paper's configuration by default)
+// for max_steps steps (to the end of that round; the convergence test is off, so the work is fixed).
 SarsaBenchmark benchmark_sarsa(const MotionSet& set, const Params& params, std::int64_t max_steps);
 
 struct SynthesisBenchmark {

@@ -381,7 +381,7 @@ void EvaluationRecorder::observe(const World& world) {
 Evaluation EvaluationRecorder::finish(const World& world, EvaluationMethod method) const {
   Evaluation e;
   e.scenario = world.scenario().name;
-  e.motions = world.scenario().motions;
+  e.motions = world.assets().set->name;  // "builtin", "daz43", ... (the scenario names a manifest path)
   e.method = method;
   e.seconds = world.time();
   e.ticks = world.ticks();

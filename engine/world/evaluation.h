@@ -188,7 +188,7 @@ struct CharacterEvaluation {
 };
 
 struct Evaluation {
-  std::string scenario, motions;
+  std::string scenario, motions;  // motions: the motion set's name
   EvaluationMethod method = EvaluationMethod::Ours;
   float seconds = 0;
   int ticks = 0;

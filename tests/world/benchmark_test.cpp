@@ -20,7 +20,7 @@ TEST_CASE("the synthesis benchmark runs the balance optimizer only when asked, a
   CHECK(with.frames == 40);
   // Alpha stays in [0.3, 1]: the optimizer runs on every frame with a foot down (walking: all of them).
   CHECK(with.balanced_fraction > 0.95);
-  CHECK(with.mean_balance_steps >= 1.0);
+  CHECK(with.mean_balance_steps > 0.0);  // a frame already in balance may take no step
   CHECK(with.mean_balance_steps <= Params{}.balance.max_steps);
   CHECK(without.balanced_fraction == 0.0);
   CHECK(with.us_per_character_frame > 0.0);
