@@ -1,27 +1,4 @@
 #version 330 core
-// The floor: neutral grey with a 1 m grid (darker, wider lines every 5 m), antialiased by the screen-space
-// derivative of the position and faded out with distance before it can alias, lit and shadowed.
-// It covers most of the screen, so its lighting is the cheap special case of shade() for a normal of +Y
-// with no specular (measured on llvmpipe: the floor's fragments are most of a frame's cost).
-#include "lighting.glsl"
-
-in vec3 v_world;
-uniform vec3 u_ground;
-uniform vec3 u_grid_line;
-out vec4 frag_colour;
-
-void main() {
-  vec2 p = v_world.xz;
-  vec2 w = max(fwidth(p), vec2(1e-5));
-  // Distance to the nearest 1 m and 5 m lines, in pixels.
-  vec2 d1 = abs(fract(p - 0.5) - 0.5) / w;
-  vec2 d5 = abs(fract(p * 0.2 - 0.5) - 0.5) * 5.0 / w;
-  float minor = 1.0 - clamp(min(d1.x, d1.y), 0.0, 1.0);      // 1 pixel wide
-  float major = 1.0 - clamp(min(d5.x, d5.y) - 0.5, 0.0, 1.0); // 2 pixels wide
-  float fade = 1.0 - clamp(max(w.x, w.y) * 4.0, 0.0, 1.0);     // lines vanish where a pixel spans >= 25 cm
-  vec3 albedo = mix(u_ground, u_grid_line, max(minor * 0.7, major) * fade);
-  float visible = shadow_visibility(v_world, vec3(0.0, 1.0, 0.0));
-  // shade() with n = +Y: ambient at full sky factor, diffuse = light_dir.y.
-  vec3 colour = albedo * (0.45 + max(u_light_dir.y, 0.0) * 0.70 * visible);
-  frag_colour = vec4(apply_fog(colour, v_world), 1.0);
-}
+// The floor where shadows can fall (ground.glsl).
+#define FLOOR_SHADOWS 1
+#include "ground.glsl"

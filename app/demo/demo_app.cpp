@@ -27,6 +27,8 @@ DemoApp::DemoApp(render::GlContext& context, WorldSession& session, GLFWwindow* 
   renderer_ = std::make_unique<render::Renderer>(settings);
   overlay_ = std::make_unique<render::Overlay>();
   ui_ = std::make_unique<render::ImGuiLayer>(window);
+  // Opaque panels: the scene under them is not drawn at all (Renderer::set_covered).
+  ImGui::GetStyle().Colors[ImGuiCol_WindowBg].w = 1.0f;
   gl_description_ = gl::describe_context();
   scenarios = list_scenarios(default_scenarios_dir());
   params_path = "params.json";
@@ -113,13 +115,16 @@ void DemoApp::skip_frame(float dt) {
 
 void DemoApp::frame(float dt) {
   const auto frame_start = Clock::now();
-  if (!first_frame_) timings.end_frame(std::chrono::duration<double, std::milli>(frame_start - last_frame_start_).count());
-  first_frame_ = false;
+  // The first frames compile shaders and build the font atlas: the averages start after them.
+  const bool timed = frames_drawn_ >= kUntimedFrames;
+  if (timed && frames_drawn_ > kUntimedFrames)
+    timings.end_frame(std::chrono::duration<double, std::milli>(frame_start - last_frame_start_).count());
+  ++frames_drawn_;
   last_frame_start_ = frame_start;
   const int width = context_.width(), height = context_.height();
   auto finish_stage = [&](int stage, Clock::time_point start, bool gl_stage) {
     if (gl_stage && sync_stages) glFinish();
-    timings.add(stage, ms_since(start));
+    if (timed) timings.add(stage, ms_since(start));
   };
 
   auto t = Clock::now();
@@ -145,12 +150,22 @@ void DemoApp::frame(float dt) {
 
   t = Clock::now();
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  // The panels that stood still over the last two frames will cover the same pixels now: skip the scene
+  // there. A panel that moves (dragged, resized) is drawn over a fully drawn scene until it rests again.
+  std::vector<glm::vec4> covered;
+  if (view.show_panels)
+    for (const auto& [name, r] : panel_rects_) {
+      const auto before = previous_panel_rects_.find(name);
+      if (before != previous_panel_rects_.end() && before->second == r) covered.push_back(r);
+    }
+  renderer_->set_covered(std::move(covered));
   renderer_->main_pass(view.camera, 0, 0, width, height);
   last_view_projection_ = view.camera.view_projection(static_cast<float>(width) / std::max(height, 1));
   overlay_->draw(scene_, last_view_projection_);
   finish_stage(kMainPass, t, true);
 
   t = Clock::now();
+  previous_panel_rects_ = std::move(panel_rects_);
   panel_rects_.clear();
   const bool starting = session_.phase() != SessionPhase::Running;
   if (view.show_panels || starting || !view.caption.empty()) {

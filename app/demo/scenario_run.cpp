@@ -40,7 +40,7 @@ render::Image downscale(const render::Image& image, int factor) {
 
 namespace {
 
-constexpr int kScreenshotLeadFrames = kVideoFps;
+constexpr int kScreenshotLeadFrames = 2 * kVideoFps;
 
 std::string shell_quote(const std::string& s) {
   std::string out = "'";
@@ -152,7 +152,7 @@ int run_scenario_headless(const ScenarioRunOptions& o) {
   int tile = 0, written = 0;
   for (int f = 0; f < frames; ++f) {
     const bool strip_frame = tile < static_cast<int>(strip_frames.size()) && strip_frames[static_cast<size_t>(tile)] == f;
-    // The screenshot's last frames are drawn (a second of them: the panels' timings and plots settle).
+    // The screenshot's last frames are drawn (two seconds of them: the panels' timings settle).
     const bool screenshot_frame = !o.screenshot.empty() && f >= frames - kScreenshotLeadFrames;
     const bool every_frame = !o.frames_dir.empty() || writer;
     if (!app || !(every_frame || strip_frame || screenshot_frame)) {

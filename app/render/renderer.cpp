@@ -201,6 +201,77 @@ ScenePrimitives build_primitives(const Scene& scene, const std::vector<bool>& sk
   return prims;
 }
 
+namespace {
+
+struct FloorRect {
+  glm::vec2 lo{1e30f}, hi{-1e30f};
+  bool empty() const { return lo.x > hi.x; }
+  void add(glm::vec2 p, float grow) {
+    lo = glm::min(lo, p - glm::vec2(grow));
+    hi = glm::max(hi, p + glm::vec2(grow));
+  }
+  float area() const { return empty() ? 0.0f : (hi.x - lo.x) * (hi.y - lo.y); }
+};
+
+FloorRect merged(const FloorRect& a, const FloorRect& b) {
+  FloorRect m;
+  m.lo = glm::min(a.lo, b.lo);
+  m.hi = glm::max(a.hi, b.hi);
+  return m;
+}
+
+}  // namespace
+
+std::vector<glm::vec4> shadow_receiver_rects(const Scene& scene, const ScenePrimitives& prims, const glm::vec3& light_dir,
+                                             int max_rects) {
+  const glm::vec3 l = glm::normalize(light_dir);
+  const float up = std::max(l.y, 0.05f);
+  // Slack for the shadow lookup's normal offset and filtering (a texel or two of the map).
+  const float slack = 0.05f;
+  std::vector<FloorRect> rects;
+  auto caster = [&](FloorRect& r, const glm::vec3& p, float radius) {
+    const float y = std::max(p.y, 0.0f);
+    const glm::vec3 shadow = p - l * (y / up);  // where the point's shadow meets the floor
+    const float grow = radius / up + slack;     // a sphere's shadow on the floor is stretched by 1 / l.y
+    r.add({p.x, p.z}, grow);
+    r.add({shadow.x, shadow.z}, grow);
+  };
+  for (const CapsuleInstance& c : prims.capsules) {
+    FloorRect r;
+    caster(r, glm::vec3(c.a_radius), c.a_radius.w);
+    caster(r, glm::vec3(c.b_glow), c.a_radius.w);
+    rects.push_back(r);
+  }
+  for (const BoxInstance& b : prims.boxes) {
+    FloorRect r;
+    for (int corner = 0; corner < 8; ++corner) {
+      const glm::vec4 local((corner & 1) ? 0.5f : -0.5f, (corner & 2) ? 0.5f : -0.5f, (corner & 4) ? 0.5f : -0.5f, 1.0f);
+      caster(r, glm::vec3(b.model * local), 0.0f);
+    }
+    rects.push_back(r);
+  }
+  for (const SceneCharacter& c : scene.characters) {  // skinned bodies have no capsules: their joints, with flesh
+    FloorRect r;
+    for (const glm::vec3& p : c.joint_positions) caster(r, p, 0.18f);
+    if (!r.empty()) rects.push_back(r);
+  }
+  // Merge down to max_rects: each time the pair whose union adds the least area.
+  while (static_cast<int>(rects.size()) > std::max(max_rects, 1)) {
+    size_t best_i = 0, best_j = 1;
+    float best = 1e30f;
+    for (size_t i = 0; i < rects.size(); ++i)
+      for (size_t j = i + 1; j < rects.size(); ++j) {
+        const float added = merged(rects[i], rects[j]).area() - rects[i].area() - rects[j].area();
+        if (added < best) best = added, best_i = i, best_j = j;
+      }
+    rects[best_i] = merged(rects[best_i], rects[best_j]);
+    rects.erase(rects.begin() + static_cast<std::ptrdiff_t>(best_j));
+  }
+  std::vector<glm::vec4> out;
+  for (const FloorRect& r : rects) out.emplace_back(r.lo.x, r.lo.y, r.hi.x, r.hi.y);
+  return out;
+}
+
 Renderer::Renderer(const RenderSettings& settings) : settings_(settings) {
   if (!gl::loaded()) throw std::logic_error("Renderer: no current GL context (gl::load not done)");
   settings_.light_dir = glm::normalize(settings_.light_dir);
@@ -209,6 +280,7 @@ Renderer::Renderer(const RenderSettings& settings) : settings_(settings) {
   capsule_depth_program_ = build_program("capsule.vert", "depth.frag");
   box_depth_program_ = build_program("box.vert", "depth.frag");
   ground_program_ = build_program("ground.vert", "ground.frag");
+  ground_unshadowed_program_ = build_program("ground.vert", "ground_unshadowed.frag");
   marker_program_ = build_program("marker.vert", "marker.frag");
   skinned_program_ = build_program("skinned.vert", "lit.frag");
   skinned_depth_program_ = build_program("skinned.vert", "depth.frag");
@@ -274,6 +346,12 @@ Renderer::Renderer(const RenderSettings& settings) : settings_(settings) {
     glBindBuffer(GL_ARRAY_BUFFER, ground_vbo_);
     glBufferData(GL_ARRAY_BUFFER, sizeof(quad), quad, GL_STATIC_DRAW);
     bind_float_attribute(0, 3, 3 * sizeof(float), 0, false);
+    // The floor where shadows can fall: quads rebuilt each frame (shadow_receiver_rects).
+    glGenVertexArrays(1, &receiver_vao_);
+    glBindVertexArray(receiver_vao_);
+    glGenBuffers(1, &receiver_vbo_);
+    glBindBuffer(GL_ARRAY_BUFFER, receiver_vbo_);
+    bind_float_attribute(0, 3, 3 * sizeof(float), 0, false);
   }
   // Markers: a [-1, 1]^2 square per instance.
   {
@@ -315,13 +393,14 @@ Renderer::Renderer(const RenderSettings& settings) : settings_(settings) {
 
 Renderer::~Renderer() {
   bodies_.clear();  // their GL objects go while the context is current
-  const GLuint programs[] = {capsule_program_, box_program_,          ground_program_,       marker_program_,
-                             capsule_depth_program_, box_depth_program_, skinned_program_, skinned_depth_program_};
+  const GLuint programs[] = {capsule_program_,       box_program_,       ground_program_,  ground_unshadowed_program_,
+                             marker_program_,        capsule_depth_program_, box_depth_program_, skinned_program_,
+                             skinned_depth_program_};
   for (GLuint p : programs) glDeleteProgram(p);
   const GLuint buffers[] = {capsule_vbo_, capsule_ibo_, capsule_instances_, box_vbo_, box_ibo_, box_instances_,
-                            ground_vbo_, marker_vbo_, marker_instances_, skin_block_};
+                            ground_vbo_, receiver_vbo_, marker_vbo_, marker_instances_, skin_block_};
   glDeleteBuffers(static_cast<GLsizei>(std::size(buffers)), buffers);
-  const GLuint arrays[] = {capsule_vao_, box_vao_, ground_vao_, marker_vao_};
+  const GLuint arrays[] = {capsule_vao_, box_vao_, ground_vao_, receiver_vao_, marker_vao_};
   glDeleteVertexArrays(static_cast<GLsizei>(std::size(arrays)), arrays);
   if (shadow_fbo_) glDeleteFramebuffers(1, &shadow_fbo_);
   if (shadow_texture_) glDeleteTextures(1, &shadow_texture_);
@@ -379,6 +458,7 @@ void Renderer::prepare(const Scene& scene) {
   const glm::mat4 view = glm::lookAt(centre + settings_.light_dir * 30.0f, centre, up);
   const float e = settings_.shadow_extent;
   light_view_proj_ = glm::ortho(-e, e, -e, e, 1.0f, 60.0f) * view;
+  shadow_rects_ = shadow_receiver_rects(scene, primitives_, settings_.light_dir, kMaxShadowRects);
 }
 
 void Renderer::draw_capsule_bodies(GLuint program, const glm::mat4& view_proj) {
@@ -460,6 +540,19 @@ void Renderer::main_pass(const Camera& camera, int x, int y, int width, int heig
   glClearDepth(1.0);
   glDepthMask(GL_TRUE);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  if (!covered_.empty()) {
+    // Depth 0 under the panels: every fragment there fails the depth test before it is shaded.
+    glClearDepth(0.0);
+    for (const glm::vec4& r : covered_) {
+      const int rx = std::max(0, static_cast<int>(std::ceil(r.x))), ry = std::max(0, static_cast<int>(std::ceil(r.y)));
+      const int rw = std::min(width - rx, static_cast<int>(std::floor(r.x + r.z)) - rx);
+      const int rh = std::min(height - ry, static_cast<int>(std::floor(r.y + r.w)) - ry);
+      if (rw <= 0 || rh <= 0) continue;
+      glScissor(x + rx, y + height - ry - rh, rw, rh);  // GL's origin is the bottom-left
+      glClear(GL_DEPTH_BUFFER_BIT);
+    }
+    glClearDepth(1.0);
+  }
   glDisable(GL_SCISSOR_TEST);
   glDisable(GL_BLEND);
   glEnable(GL_DEPTH_TEST);
@@ -482,6 +575,27 @@ void Renderer::main_pass(const Camera& camera, int x, int y, int width, int heig
   glUniformMatrix4fv(glGetUniformLocation(ground_program_, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
   glUniform3fv(glGetUniformLocation(ground_program_, "u_ground"), 1, glm::value_ptr(palette::kGround));
   glUniform3fv(glGetUniformLocation(ground_program_, "u_grid_line"), 1, glm::value_ptr(palette::kGridLine));
+  // The floor in two parts (ground.glsl): first where shadows can fall, with the shadow lookup, pulled
+  // slightly toward the camera; then the whole floor without it, which the depth test keeps out of the
+  // first part before its fragments are shaded.
+  if (shadow_fbo_ && !shadow_rects_.empty()) {
+    std::vector<float> quads;
+    quads.reserve(shadow_rects_.size() * 18);
+    for (const glm::vec4& r : shadow_rects_)
+      quads.insert(quads.end(), {r.x, 0, r.y, r.z, 0, r.y, r.z, 0, r.w, r.x, 0, r.y, r.z, 0, r.w, r.x, 0, r.w});
+    glBindBuffer(GL_ARRAY_BUFFER, receiver_vbo_);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(quads.size() * sizeof(float)), quads.data(), GL_STREAM_DRAW);
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(-1.0f, -2.0f);
+    glBindVertexArray(receiver_vao_);
+    glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(quads.size() / 3));
+    glDisable(GL_POLYGON_OFFSET_FILL);
+    triangles_ += static_cast<int>(quads.size() / 9);
+  }
+  set_lighting_uniforms(ground_unshadowed_program_, eye);
+  glUniformMatrix4fv(glGetUniformLocation(ground_unshadowed_program_, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
+  glUniform3fv(glGetUniformLocation(ground_unshadowed_program_, "u_ground"), 1, glm::value_ptr(palette::kGround));
+  glUniform3fv(glGetUniformLocation(ground_unshadowed_program_, "u_grid_line"), 1, glm::value_ptr(palette::kGridLine));
   glBindVertexArray(ground_vao_);
   glDrawArrays(GL_TRIANGLES, 0, 6);
   triangles_ += 2;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <glm/mat4x4.hpp>
+#include <glm/vec4.hpp>
 #include <memory>
 #include <string>
 #include <vector>
@@ -51,6 +52,13 @@ struct ScenePrimitives {
 };
 // Characters whose entry in `skinned` is true are drawn as skinned bodies and get no capsules.
 ScenePrimitives build_primitives(const Scene& scene, const std::vector<bool>& skinned = {});
+// Where on the floor shadows can fall: for every caster (each capsule, each box, each character's joints)
+// the rectangle (min x, min z, max x, max z) holding its footprint and its shadow cast along light_dir
+// (toward the light), grown by its radius; merged (the pair whose union adds the least area first) to at
+// most max_rects. Only there is the floor drawn with the shadow map lookup (ground.glsl).
+std::vector<glm::vec4> shadow_receiver_rects(const Scene& scene, const ScenePrimitives& prims, const glm::vec3& light_dir,
+                                             int max_rects);
+constexpr int kMaxShadowRects = 8;
 // The capsules of one character's body: one per bone (parent joint -> joint, and joint -> End Site), with
 // radii by body part from the joint names; the head as a near-sphere above the head joint.
 void append_character_capsules(const SceneCharacter& character, std::vector<CapsuleInstance>& out);
@@ -78,6 +86,11 @@ class Renderer {
     main_pass(camera, x, y, width, height);
   }
 
+  // Screen rectangles (x, y, width, height; pixels from the top-left of the viewport) that opaque panels
+  // will cover: main_pass marks them nearest in the depth buffer right after clearing, so that nothing of
+  // the scene is shaded under them (on llvmpipe the floor's fragments are most of a frame). Empty: none.
+  void set_covered(std::vector<glm::vec4> rects) { covered_ = std::move(rects); }
+
   int triangles_last_frame() const { return triangles_; }
   // The skinned body the renderer draws for this skeleton (made on first use), or nullptr: capsules.
   const SkinnedBody* body_for(const std::shared_ptr<const Skeleton>& skeleton);
@@ -103,18 +116,21 @@ class Renderer {
   };
 
   RenderSettings settings_;
+  std::vector<glm::vec4> covered_;
   ScenePrimitives primitives_;
   std::vector<BodyEntry> bodies_;
   std::vector<SkinnedDraw> skinned_draws_;
   glm::vec3 focus_{0.0f};
   glm::mat4 light_view_proj_{1.0f};
+  std::vector<glm::vec4> shadow_rects_;
 
   GLuint capsule_program_ = 0, box_program_ = 0, ground_program_ = 0, marker_program_ = 0;
   GLuint capsule_depth_program_ = 0, box_depth_program_ = 0;
   GLuint skinned_program_ = 0, skinned_depth_program_ = 0, skin_block_ = 0;
   GLuint capsule_vao_ = 0, capsule_vbo_ = 0, capsule_ibo_ = 0, capsule_instances_ = 0;
   GLuint box_vao_ = 0, box_vbo_ = 0, box_ibo_ = 0, box_instances_ = 0;
-  GLuint ground_vao_ = 0, ground_vbo_ = 0;
+  GLuint ground_vao_ = 0, ground_vbo_ = 0, receiver_vao_ = 0, receiver_vbo_ = 0;
+  GLuint ground_unshadowed_program_ = 0;
   GLuint marker_vao_ = 0, marker_vbo_ = 0, marker_instances_ = 0;
   GLuint shadow_fbo_ = 0, shadow_texture_ = 0;
   int capsule_index_count_ = 0;

@@ -56,7 +56,8 @@ TEST_CASE("pick_object: the first object along the ray, turned obstacles, balls,
   // At the beam's height over the bar's top: the beam (index 1).
   CHECK(pick_object(w, {{0.5f, 1.3f, 0.0f}, {0.0f, 0.0f, 1.0f}}) == 1);
   // Straight down onto the hurdle's board; and beside the course, nothing.
-  CHECK(pick_object(w, {{1.0f, 3.0f, 13.0f}, {0.0f, -1.0f, 0.0f}}) == 2);
+  const glm::vec3 hurdle = w.objects()[2].position;
+  CHECK(pick_object(w, {{hurdle.x + 1.0f, 3.0f, hurdle.z}, {0.0f, -1.0f, 0.0f}}) == 2);
   CHECK_FALSE(pick_object(w, {{4.0f, 0.5f, 0.0f}, {0.0f, 0.0f, 1.0f}}));
 
   WorldSession kick(o);

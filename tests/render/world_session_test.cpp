@@ -117,8 +117,9 @@ TEST_CASE("picking an object makes it the source and puts the goal where acting 
   const WorldCharacter& u = s.world()->characters()[0];
   CHECK(u.source_object == 2);
   CHECK(u.prepared_for == TargetAction::Jump);
-  CHECK(s.goal().x == doctest::Approx(0.0f));
-  CHECK(s.goal().y == doctest::Approx(13.0f + 2.0f));
+  const glm::vec3 hurdle = s.world()->objects()[2].position;  // heading 0: crossed along +Z
+  CHECK(s.goal().x == doctest::Approx(hurdle.x));
+  CHECK(s.goal().y == doctest::Approx(hurdle.z + 2.0f));
   s.pick_object(-1);  // out of range: nothing changes
   CHECK(s.world()->picked_source() == 2);
 }
@@ -151,8 +152,9 @@ TEST_CASE("first start and retraining run in the background: the scene shows and
   REQUIRE(s.phase() == demo::SessionPhase::Running);
   CHECK(saw_training);
   CHECK(saw_characters);  // once the motions are loaded, the character stands at its start
-  CHECK(s.goal().x == doctest::Approx(1.0f));
-  CHECK(s.goal().y == doctest::Approx(15.5f));
+  const glm::vec2 scenario_goal = load_scenario(scenario_path("obstacles")).goal.front();
+  CHECK(s.goal().x == doctest::Approx(scenario_goal.x + 1.0f));
+  CHECK(s.goal().y == doctest::Approx(scenario_goal.y));
   CHECK(std::filesystem::exists(policy_cache_path(cache, "builtin", p)));
 
   // A change the policy depends on: the old policy plays on while the new one trains.
