@@ -1,6 +1,7 @@
 #include "engine/graph/motion_graph.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -220,6 +221,46 @@ float MotionGraph::distance(int a, int i, int b, int j, int n) const {
       sum += glm::dot(diff, diff);
     }
   return std::sqrt(sum / static_cast<float>(n * points_));
+}
+
+// best_entry_frame's table: one entry per (clip frame, target node), -1 until computed.
+struct MotionGraph::EntryMemo {
+  explicit EntryMemo(const MotionSet& set) : nodes(set.clips.size()) {
+    size_t frames = 0;
+    for (const MotionClip& mc : set.clips) {
+      first.push_back(frames);
+      frames += static_cast<size_t>(mc.clip.frame_count());
+    }
+    best.reset(new std::atomic<int>[frames * nodes]);
+    for (size_t k = 0; k < frames * nodes; ++k) best[k].store(-1, std::memory_order_relaxed);
+  }
+  size_t nodes;
+  std::vector<size_t> first;                 // per clip: its frame 0's row
+  std::unique_ptr<std::atomic<int>[]> best;  // [(first[from] + from_frame) * nodes + to]
+};
+
+int MotionGraph::best_entry_frame(int from, int from_frame, int to) const {
+  const MotionClip& mc = set_->clips.at(static_cast<size_t>(to));
+  const int frames = set_->clips.at(static_cast<size_t>(from)).clip.frame_count();
+  std::atomic<int>* slot = nullptr;
+  if (entry_memo_ && from_frame >= 0 && from_frame < frames) {
+    slot = &entry_memo_->best[(entry_memo_->first[static_cast<size_t>(from)] + static_cast<size_t>(from_frame)) *
+                                  entry_memo_->nodes + static_cast<size_t>(to)];
+    const int known = slot->load(std::memory_order_relaxed);
+    if (known >= 0) return known;
+  }
+  const int first = mc.cyclic ? mc.loop_first : 0, last = mc.cyclic ? mc.loop_last : mc.clip.frame_count() - 1;
+  int best = first;
+  float best_distance = std::numeric_limits<float>::infinity();
+  for (int j = first; j <= last; ++j) {
+    const float d = distance(from, from_frame, to, j, window_frames_);
+    if (d < best_distance) {
+      best_distance = d;
+      best = j;
+    }
+  }
+  if (slot) slot->store(best, std::memory_order_relaxed);
+  return best;
 }
 
 MotionGraph MotionGraph::build(const MotionSet& set, const GraphParams& params) {
@@ -507,6 +548,7 @@ MotionGraph MotionGraph::build(const MotionSet& set, const GraphParams& params) 
     if (std::find(next.begin(), next.end(), e.to) == next.end()) next.push_back(e.to);
   }
   for (auto& next : g.next_) std::sort(next.begin(), next.end());
+  g.entry_memo_ = std::make_shared<EntryMemo>(set);
   g.build_seconds_ = std::chrono::duration<float>(std::chrono::steady_clock::now() - start).count();
   return g;
 }

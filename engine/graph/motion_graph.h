@@ -6,6 +6,7 @@
 // minima under GraphParams::threshold.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -65,6 +66,12 @@ class MotionGraph {
   FloorTransform align_roots(int a, int i, int b, int j) const;
   // Distance (m, RMS) of the same windows after the point-cloud alignment.
   float distance(int a, int i, int b, int j, int n) const;
+  // The frame of clip `to` (within its loop when cyclic, else any) whose window is nearest by distance()
+  // to the window of clip `from` at `from_frame` (the first such frame on ties): where a phase-matched
+  // switch enters `to` (MotionStream::switch_to). The scan costs a few hundred thousand operations, so the
+  // answer is kept per (from, from_frame, to) in a table shared by all users of the graph (and its copies);
+  // several threads may fill it at once, each entry being computed the same way whoever computes it.
+  int best_entry_frame(int from, int from_frame, int to) const;
 
   float build_seconds() const { return build_seconds_; }
   int candidate_pairs() const { return candidate_pairs_; }  // frame pairs compared while building
@@ -86,6 +93,8 @@ class MotionGraph {
   int window_frames_ = 1;
   int candidate_pairs_ = 0;
   float build_seconds_ = 0.0f;
+  struct EntryMemo;
+  std::shared_ptr<EntryMemo> entry_memo_;  // best_entry_frame's answers
 };
 
 }  // namespace prep

@@ -49,18 +49,8 @@ bool MotionStream::queue(int node) {
 }
 
 void MotionStream::switch_to(int node, glm::vec2 position, float heading) {
-  const MotionClip& mc = graph_->set().clips.at(static_cast<size_t>(node));
   const int from = this->node(), from_frame = clip_frame();
-  const int first = mc.cyclic ? mc.loop_first : 0, last = mc.cyclic ? mc.loop_last : mc.clip.frame_count() - 1;
-  int best = first;
-  float best_distance = std::numeric_limits<float>::infinity();
-  for (int j = first; j <= last; ++j) {
-    const float d = graph_->distance(from, from_frame, node, j, graph_->window_frames());
-    if (d < best_distance) {
-      best_distance = d;
-      best = j;
-    }
-  }
+  const int best = graph_->best_entry_frame(from, from_frame, node);  // the nearest window (memoized)
   // Place the new clip as the graph would across an edge: the floor alignment of the two windows (Kovar's
   // closed form) composed with where the playing clip stands now, then moved to `position` (the
   // synthesized root, which Eq. 3-4 keeps behind the raw locomotion). `heading` is only a fallback.
