@@ -12,6 +12,7 @@
 #include <mutex>
 #include <random>
 #include <thread>
+#include <ctime>
 
 #include "engine/control/action_effects.h"
 #include "engine/control/environment.h"
@@ -28,6 +29,12 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+double cpu_ms(clockid_t clock) {
+  timespec t{};
+  clock_gettime(clock, &t);
+  return 1e3 * static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_nsec);
+}
 
 constexpr float kPi = 3.14159265358979f;
 
@@ -154,6 +161,7 @@ SynthesisBenchmark benchmark_synthesis(const MotionSet& set, const Params& base,
   SynthesisReport report;
   long optimized = 0, steps = 0;
   const auto t0 = Clock::now();
+  const double cpu0 = cpu_ms(CLOCK_THREAD_CPUTIME_ID);
   for (int f = 0; f < frames; ++f)
     for (int c = 0; c < characters; ++c) {
       const size_t k = static_cast<size_t>(f + phase[static_cast<size_t>(c)]);
@@ -172,7 +180,7 @@ SynthesisBenchmark benchmark_synthesis(const MotionSet& set, const Params& base,
       optimized += report.balanced;
       steps += report.balance_steps;
     }
-  const double ms = ms_since(t0);
+  const double ms = ms_since(t0), cpu = cpu_ms(CLOCK_THREAD_CPUTIME_ID) - cpu0;
   SynthesisBenchmark b;
   b.set = set.name;
   b.joints = set.skeleton->size();
@@ -181,6 +189,7 @@ SynthesisBenchmark benchmark_synthesis(const MotionSet& set, const Params& base,
   b.frames = frames;
   const double n = static_cast<double>(characters) * frames;
   b.us_per_character_frame = 1000.0 * ms / n;
+  b.cpu_us_per_character_frame = 1000.0 * cpu / n;
   b.balanced_fraction = static_cast<double>(optimized) / n;
   b.mean_balance_steps = optimized > 0 ? static_cast<double>(steps) / static_cast<double>(optimized) : 0.0;
   return b;
@@ -226,6 +235,7 @@ CrowdBenchmark benchmark_crowd(const Scenario& scenario, std::shared_ptr<const W
   };
   for (int f = 0; f < warmup; ++f) workers.run([&](int b) { step_block(b, false); });
   double total = 0.0, worst = 0.0;
+  const double cpu0 = cpu_ms(CLOCK_PROCESS_CPUTIME_ID);
   for (int f = 0; f < frames; ++f) {
     const auto t0 = Clock::now();
     workers.run([&](int b) { step_block(b, true); });
@@ -239,6 +249,7 @@ CrowdBenchmark benchmark_crowd(const Scenario& scenario, std::shared_ptr<const W
   b.frames = frames;
   b.ms_per_frame = frames > 0 ? total / frames : 0.0;
   b.max_ms_per_frame = worst;
+  b.cpu_ms_per_frame = frames > 0 ? (cpu_ms(CLOCK_PROCESS_CPUTIME_ID) - cpu0) / frames / threads : 0.0;
   long all = 0, optimized = 0;
   for (size_t t = 0; t < synthesized.size(); ++t) all += synthesized[t], optimized += balanced[t];
   const double character_frames = static_cast<double>(characters) * frames;

@@ -16,6 +16,8 @@
 //   character's state is its own World's (a few kilobytes; reported per character from the resident
 //   memory before and after the crowd is built).
 // - Graph build time, start-up to the first synthesized frame, peak memory (getrusage).
+// Wall-clock figures on a shared machine count other processes' work too, so the synthesis and crowd
+// figures also come as CPU time (per thread, or per frame and core).
 #pragma once
 
 #include <cstdint>
@@ -46,7 +48,8 @@ struct SynthesisBenchmark {
   int joints = 0;
   bool balance = false;
   int characters = 0, frames = 0;
-  double us_per_character_frame = 0;
+  double us_per_character_frame = 0;      // wall clock
+  double cpu_us_per_character_frame = 0;  // the thread's CPU time: what the machine's load does not inflate
   double balanced_fraction = 0;   // character-frames in which the optimizer ran
   double mean_balance_steps = 0;  // gradient steps per optimized frame
 };
@@ -60,6 +63,9 @@ struct CrowdBenchmark {
   int characters = 0, threads = 0, frames = 0;
   double ms_per_frame = 0;            // mean wall clock per frame
   double max_ms_per_frame = 0;        // the slowest frame
+  // The process' CPU time per frame over all threads, divided by the threads: the frame time the cores
+  // would give if nothing else ran on them (on a shared machine the wall clock also counts others' work).
+  double cpu_ms_per_frame = 0;
   double synthesized_fraction = 0;    // character-frames that went through Synthesizer::step
   double balanced_fraction = 0;       // ... in which the balance optimizer ran (alpha >= 0.3)
   double kb_per_character = 0;        // resident memory added per character when the crowd was built
