@@ -138,21 +138,27 @@ struct BalanceResult {
 // stopping early at a local optimum (no step accepted after params.max_halvings halvings, or C improving by
 // less than params.tolerance).
 //
-// Each step follows the negative gradient (balance_gradient). The first trial step is where the linearized
-// COM comes closest to the support centre along that direction (com_response), capped at
-// params.step_size; a backtracking line search halves it until the step is accepted. A step is accepted
-// only if it lowers C and stays inside the trust region of the correction:
+// Each step follows the negative gradient (optimized_balance_gradient). The first trial step is where the
+// linearized COM comes closest to the support centre along that direction (com_response), capped at
+// params.step_size and shortened so that the centroids' first-order motion stays inside the trust region;
+// a backtracking line search halves it until the step is accepted. A step is accepted only if it lowers C
+// and stays inside the trust region of the correction:
 //  - the COM ends no further from the support centre than it was in the blended posture (balance is the
 //    optimizer's purpose, Sec. 5.3);
 //  - no body-part centroid moves more than params.max_part_shift from the blended posture;
 //  - no centroid moves more than params.max_shift_speed * dt from where this frame's descent started.
+// It also stops when less than a tenth of the tighter bound is left to the edge of the trust region.
 // Why the trust region: Eq. 6 and 7 are norms, not squares, so along a lean C falls at a constant rate
-// (w_b times the COM's lever) and rises at a constant rate (w_s times the parts' mean lever); for the trunk
-// the first wins (about 0.38 against 0.23 per radian on our skeletons), and C keeps falling until the COM
-// sits on the support centre however far that is. In walking single support the COM passes 10-30 cm from
-// the stance foot's centre; followed to the end, that is a 40-degree trunk lean that swings from one foot
-// to the other at every step (measured with the bounds off). The paper's "slight" lean (Fig. 8) comes from
+// (w_b times how far the COM moves) and rises at a constant rate (w_s times how far the parts move, on
+// average over all parts, the legs included); for a lean of the trunk the first wins (the COM carries
+// most of the body's mass along, while the mean over the parts is diluted by the legs that stay), and C
+// keeps falling until the COM sits on the support centre however far that is. In walking single support
+// the COM passes 5-40 cm from the stance foot's centre; with the bounds off the optimizer follows it
+// with a trunk lean of up to 46 degrees that swings from one foot to the other at every step (built-in
+// walk -> duck, tests/synthesis/preparation_run_test.cpp). The paper's "slight" lean (Fig. 8) comes from
 // stopping after 10 small steps; the trust region makes that explicit and independent of step sizes.
+// The defaults: 6 cm, the head's move in a trunk lean of about 6 degrees; 0.3 m/s, a quarter of the
+// head's own speed in a walk, so the correction never outpaces the motion it corrects.
 //
 // Warm start (`memory`, may be null): the descent starts from the previous frame's correction when that is
 // at least as good as the blended posture itself (lower C, COM no further from the centre, within the

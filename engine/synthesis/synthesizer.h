@@ -6,9 +6,9 @@
 // -> balance optimization (Eq. 6-10, balance.h).
 //
 // Memory: a Synthesizer holds what depends only on the skeleton and Params (shared by every character on
-// that skeleton). A SynthesisState is one character's memory between frames: plain data, no heap, about
-// 1.2 kilobytes. A SynthesisScratch holds working buffers (one per thread). step() allocates nothing, except
-// the support polygon's small hull vector (support_polygon.h returns it by value).
+// that skeleton). A SynthesisState is one character's memory between frames: plain data, no heap, 1.3
+// kilobytes (half of it the balance optimizer's correction for the warm start). A SynthesisScratch holds
+// working buffers (one per thread). step() allocates nothing.
 #pragma once
 
 #include <array>

@@ -80,6 +80,17 @@ TEST_CASE("overrides by joint name, linear method, bad names") {
   CHECK(curves.C[static_cast<size_t>(skeleton->find("lShin"))] == 2.0f);
   CHECK(curves.c[static_cast<size_t>(skeleton->find("head"))] == 0.5f);
   CHECK(curves.C[static_cast<size_t>(skeleton->find("rShin"))] == p.C_lower);
+  // blend_weights evaluates Eq. 1 once per distinct curve (upper, lower, and the overridden shin and head
+  // make two more): the same value as per joint.
+  CHECK(curves.curve_C.size() == 4);
+  std::vector<float> per_curve(static_cast<size_t>(skeleton->size()));
+  for (float alpha : {0.0f, 0.13f, 0.5f, 0.97f, 1.0f}) {
+    blend_weights(curves, alpha, per_curve.data());
+    for (int j = 0; j < skeleton->size(); ++j) {
+      const size_t jj = static_cast<size_t>(j);
+      CHECK(per_curve[jj] == blend_weight(alpha, curves.C[jj], curves.c[jj]));
+    }
+  }
 
   p.method = "linear";
   curves = make_blend_curves(*skeleton, body, p);
