@@ -153,11 +153,15 @@ void DemoApp::frame(float dt) {
   // The panels that stood still over the last two frames will cover the same pixels now: skip the scene
   // there. A panel that moves (dragged, resized) is drawn over a fully drawn scene until it rests again.
   std::vector<glm::vec4> covered;
-  if (view.show_panels)
+  if (view.show_panels) {
+    // Panel rectangles are in ImGui's display units; the framebuffer may have more pixels (high density).
+    const ImVec2 scale = ImGui::GetIO().DisplayFramebufferScale;
     for (const auto& [name, r] : panel_rects_) {
       const auto before = previous_panel_rects_.find(name);
-      if (before != previous_panel_rects_.end() && before->second == r) covered.push_back(r);
+      if (before != previous_panel_rects_.end() && before->second == r)
+        covered.push_back(r * glm::vec4(scale.x, scale.y, scale.x, scale.y));
     }
+  }
   renderer_->set_covered(std::move(covered));
   renderer_->main_pass(view.camera, 0, 0, width, height);
   last_view_projection_ = view.camera.view_projection(static_cast<float>(width) / std::max(height, 1));
