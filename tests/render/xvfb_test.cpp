@@ -54,7 +54,11 @@ TEST_CASE("windowed demo under Xvfb: keys move the goal, the window shows the sc
   }
   std::filesystem::create_directories(test::tmp_dir());
   const std::string png = test::tmp_dir() + "/xvfb_demo.png", log = test::tmp_dir() + "/xvfb_demo.log";
-  const std::string command = test::repo() + "/scripts/xvfb_smoke.sh '" + build + "' '" + png + "' > '" + log + "' 2>&1";
+  // Under AddressSanitizer the window's leaks are not checked: GLFW unloads Mesa's GLX driver when it
+  // terminates, so LeakSanitizer sees the driver's allocations from an unknown module and cannot be told
+  // to leave them by name. (Every other render test runs the same DemoApp through OSMesa, leak-checked.)
+  const std::string command = "ASAN_OPTIONS=\"${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0\" " + test::repo() +
+                              "/scripts/xvfb_smoke.sh '" + build + "' '" + png + "' > '" + log + "' 2>&1";
   const int status = std::system(command.c_str());
   INFO("log: " << log);
   REQUIRE(status == 0);  // the script checked that the keys moved the goal and that a 1280x720 PNG came out
