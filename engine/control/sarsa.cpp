@@ -20,6 +20,11 @@ struct Worker {
   std::vector<std::uint8_t> touched_flag;
   std::int64_t steps = 0, episodes = 0, explored = 0;  // explored: untried actions taken
   int quota = 0;                        // episodes this round
+  // The next episode's exploring start, drawn one episode ahead so that its Q row and tried flags (a
+  // random state: a cache miss) are fetched while the current episode runs. Episodes last only a few
+  // actions of a gait cycle, so these misses would otherwise cost as much as the steps.
+  Situation next_start;
+  int next_state = -1;
 };
 
 class Sarsa {
@@ -69,10 +74,21 @@ class Sarsa {
     }
   }
 
+  void draw_start(Worker& w) const {
+    env_.exploring_start(w.rng, source_at_goal_, far_start_range_, w.next_start);
+    w.next_state = env_.quantize(w.next_start);
+    const size_t row = static_cast<size_t>(w.next_state) * actions_;
+    __builtin_prefetch(w.q.data() + row);
+    __builtin_prefetch(w.q.data() + row + actions_ - 1);
+    __builtin_prefetch(w.tried.data() + w.next_state);
+    __builtin_prefetch(w.touched_flag.data() + row);
+  }
+
   void episode(Worker& w) const {
-    Situation s;
-    env_.exploring_start(w.rng, source_at_goal_, far_start_range_, s);
-    int state = env_.quantize(s);
+    if (w.next_state < 0) draw_start(w);
+    Situation s = w.next_start;
+    int state = w.next_state;
+    draw_start(w);
     bool exploring = false;
     int action = choose(w, state, s.motion, exploring);
     for (int t = 0; t < max_episode_steps_; ++t) {
