@@ -48,7 +48,7 @@ void run(const TrainOptions& o) {
   // which is what the target's lower-body blend uses (Sec. 8: one controller per such curve).
   const prep::ActionTable table = prep::tabulate_action_effects(set, params);
   const prep::StateSpace states(params.quantization, table.motions);
-  const prep::ActionSpace actions(table.motions, table.alpha_levels);
+  const prep::ActionSpace actions(table.motions, table.alpha_levels, prep::action_levels(params.quantization));
   const prep::Environment env(states, actions, table, params.reward);
 
   const bool bar = !o.json && ::isatty(STDERR_FILENO);

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "engine/params/params.h"
+
 namespace prep {
 
 struct Action {
@@ -15,14 +17,24 @@ struct Action {
 
 // Actions are numbered motion-major: index = motion * alpha_levels + alpha_level. A set of actions is a
 // 64-bit mask, so at most 64 actions (e.g. 4 motions x 16 levels); the constructor checks it.
+// The alpha levels an action may choose: all of them, or, with QuantizationParams::forced_top_level, all
+// but the top one (alpha = 1), which the state then reaches only by the forcing at the source.
+inline int action_levels(const QuantizationParams& q) {
+  return q.forced_top_level && q.alpha_levels > 1 ? q.alpha_levels - 1 : q.alpha_levels;
+}
+
 class ActionSpace {
  public:
   // Every core motion may follow every other (the core nodes of a hierarchical motion graph are
-  // connected to each other, Sec. 4.1).
-  ActionSpace(int motions, int alpha_levels);
+  // connected to each other, Sec. 4.1). Actions are numbered over all alpha_levels (the table and the Q
+  // rows keep that layout); only the first `chosen_levels` levels (-1: all) are ever allowed.
+  ActionSpace(int motions, int alpha_levels, int chosen_levels = -1);
   // next[m] lists the core motions that may follow m (Next(m) of the motion graph). Each list must be
   // non-empty, else the character could get stuck; throws std::invalid_argument.
-  ActionSpace(int motions, int alpha_levels, const std::vector<std::vector<int>>& next);
+  ActionSpace(int motions, int alpha_levels, const std::vector<std::vector<int>>& next, int chosen_levels = -1);
+  // The allowed actions given as one mask per last motion (a policy file's); throws std::invalid_argument
+  // for an empty mask or one naming actions out of range.
+  static ActionSpace from_masks(int motions, int alpha_levels, const std::vector<std::uint64_t>& masks);
 
   int size() const { return motions_ * alpha_levels_; }
   int motions() const { return motions_; }
@@ -35,7 +47,8 @@ class ActionSpace {
   const std::vector<int>& allowed(int last_motion) const { return lists_[static_cast<size_t>(last_motion)]; }
 
  private:
-  void build(const std::vector<std::vector<int>>& next);
+  void build(const std::vector<std::vector<int>>& next, int chosen_levels);
+  void lists_from_masks();
   int motions_, alpha_levels_;
   std::vector<std::uint64_t> masks_;
   std::vector<std::vector<int>> lists_;

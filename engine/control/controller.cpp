@@ -91,10 +91,8 @@ ControlDecision Controller::decide(const ControlInput& in) {
   const std::uint64_t allowed = actions_.allowed_mask(motion_);
   const float* row = policy_->row(d.state);
   int best = -1;
-  for (int a = 0; a < actions_.size(); ++a) {
-    if (level_cap_ >= 0 && actions_.decode(a).alpha_level > level_cap_) continue;
+  for (int a = 0; a < actions_.size(); ++a)
     if ((allowed >> a & 1u) && (best < 0 || row[a] > row[best])) best = a;
-  }
   d.action = best;
   const Action a = actions_.decode(best);
   d.motion = a.motion;

@@ -81,10 +81,6 @@ class Controller {
   // top level until set_arrived(false).
   void set_arrived(bool arrived);
   bool arrived() const { return arrived_; }
-  // Only actions at this level or lower are chosen (-1: any). The naive baseline (World::set_preparation
-  // off, synthesis at alpha 0) caps at 0, so the motions chosen are the ones the character really plays:
-  // with a higher level the policy would steer for a stride it does not get (Eq. 3-4) and overshoot.
-  void set_level_cap(int level) { level_cap_ = level; }
 
   void reset(int motion, int alpha_level);  // also ends an arrival
   int motion() const { return motion_; }
@@ -103,7 +99,6 @@ class Controller {
   float goal_radius_, source_radius_;
   int motion_ = 0, alpha_level_ = 0;
   bool arrived_ = false;
-  int level_cap_ = -1;
 };
 
 // One policy per lower-body blend curve (Sec. 8).

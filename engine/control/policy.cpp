@@ -117,13 +117,7 @@ Policy make_policy(const Params& params, const ActionTable& table, const ActionS
   return p;
 }
 
-ActionSpace Policy::action_space() const {
-  std::vector<std::vector<int>> next(static_cast<size_t>(table.motions));
-  for (int m = 0; m < table.motions; ++m)
-    for (int n = 0; n < table.motions; ++n)
-      if (allowed_masks[static_cast<size_t>(m)] >> (n * table.alpha_levels) & 1u) next[static_cast<size_t>(m)].push_back(n);
-  return ActionSpace(table.motions, table.alpha_levels, next);
-}
+ActionSpace Policy::action_space() const { return ActionSpace::from_masks(table.motions, table.alpha_levels, allowed_masks); }
 
 std::string serialize_policy(const Policy& p) {
   Writer w;

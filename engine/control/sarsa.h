@@ -30,9 +30,10 @@
 // The discount. The paper's gamma = 0.3 looks about one action ahead, and Eq. 17 pays 0.85 of its 1.0 for
 // standing still facing the goal with a steady alpha: r_max / (1 - gamma) = 1.43 for the absorbing goal
 // against 0.85 / (1 - gamma) = 1.21 for standing forever. Whatever lets the character stand cheaply then
-// wins over paying Eq. 16 on the way in. Hence three choices elsewhere: the core motions all walk (no
-// idle, params.h), an action is a gait cycle (action_effects.h), and the source radius is 1 m
-// (reward.h). With them the paper's constants train a policy that reaches the goal and prepares before it
+// wins over paying Eq. 16 on the way in. Hence four choices elsewhere: the core motions all walk (no
+// idle, params.h), actions do not choose alpha = 1 (which stands still, Eq. 3-4; the state still reaches
+// it by the forcing, params.h forced_top_level), an action is a gait cycle (action_effects.h), and the
+// source radius is 1 m (reward.h). With them the paper's constants train a policy that reaches the goal and prepares before it
 // (README figures).
 //
 // Threads, deterministically. Each of SarsaParams::threads workers has its own replica of Q and of the
@@ -45,6 +46,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <vector>
 
 #include "engine/control/environment.h"
@@ -90,22 +92,16 @@ double average_return_per_state(const Environment& env, const std::vector<float>
 inline int greedy_action(const Environment& env, const float* q_row, int last_motion) {
   const std::uint64_t allowed = env.actions().allowed_mask(last_motion);
   const int n = env.actions().size();
-  if (allowed == (n == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << n) - 1)) {
-    // Every action allowed: the maximum first (a branch-free reduction the compiler vectorizes), then the
-    // first action holding it.
-    float best_q = q_row[0];
-    for (int a = 1; a < n; ++a) best_q = q_row[a] > best_q ? q_row[a] : best_q;
-    int best = 0;
-    while (q_row[best] != best_q) ++best;
-    return best;
+  // The maximum over the allowed actions first (a branch-free reduction the compiler vectorizes; the
+  // others count as -infinity), then the first allowed action holding it.
+  constexpr float kNone = -std::numeric_limits<float>::infinity();
+  float best_q = kNone;
+  for (int a = 0; a < n; ++a) {
+    const float v = (allowed >> a & 1u) ? q_row[a] : kNone;
+    best_q = v > best_q ? v : best_q;
   }
   int best = __builtin_ctzll(allowed);  // the lowest allowed action (the mask is never empty)
-  float best_q = q_row[best];
-  for (int a = best + 1; a < n; ++a)
-    if ((allowed >> a & 1u) && q_row[a] > best_q) {
-      best = a;
-      best_q = q_row[a];
-    }
+  while (!((allowed >> best & 1u) && q_row[best] == best_q)) ++best;
   return best;
 }
 

@@ -5,7 +5,9 @@
 // gives 16,000, not the 19,200 the paper reports. 19,200 = 4 core motions x 6 alpha levels (0, 0.2, ..., 1.0:
 // a step of 0.2 from 0 to 1 inclusive has six samples) x 5 d_g x 8 theta_g x 5 d_i x 4 theta_i. So the
 // paper's configuration has alpha_levels = 6, and "Next(m)" in Eq. 11 is represented by the last motion m
-// (it fixes which actions are allowed).
+// (it fixes which actions are allowed). Table I's 5 samples are then the levels an action chooses from
+// (0 .. 0.8, QuantizationParams::forced_top_level): the state's sixth level, 1, comes only from the
+// forcing at the source (Eq. 13's override), which is the one thing Table I's count leaves out.
 //
 // Bins (all from QuantizationParams):
 // - distances d_g, d_i: bin k holds [k * d_step, (k + 1) * d_step); a distance beyond the last bin clamps

@@ -40,7 +40,7 @@ template <class F> void fields(QuantizationParams& p, F&& f) {
   f("theta_g_step_deg", p.theta_g_step_deg); f("theta_g_bins", p.theta_g_bins);
   f("theta_i_step_deg", p.theta_i_step_deg); f("theta_i_bins", p.theta_i_bins);
   f("alpha_step", p.alpha_step); f("alpha_levels", p.alpha_levels); f("core_roles", p.core_roles);
-  f("footsteps_per_action", p.footsteps_per_action);
+  f("footsteps_per_action", p.footsteps_per_action); f("forced_top_level", p.forced_top_level);
 }
 template <class F> void fields(RewardParams& p, F&& f) {
   f("theta_norm_deg", p.theta_norm_deg); f("d_norm", p.d_norm); f("C_alpha", p.C_alpha);

@@ -97,6 +97,11 @@ struct QuantizationParams {
   int theta_i_bins = 4;
   float alpha_step = 0.2f;
   int alpha_levels = 6;           // 0, 0.2, ..., 1.0: 6 levels give the paper's 19,200 states (Table I prints 5)
+  // The top level (alpha = 1) is the forcing's alone (Eq. 13 at the source): actions choose among the
+  // levels below it, Table I's 5 samples (0, 0.2, ..., 0.8), while the state has all 6 (state.h). At
+  // alpha = 1 Eq. 3-4 leave no stride, so an action at 1 is standing still, which with the discount of
+  // 0.3 is worth more to the learner than walking the last metres to the launch point (reward.h).
+  bool forced_top_level = true;
   // The graph's core locomotion nodes the controller plays (the m of Eq. 11-12; the paper has four). Each
   // entry is a role (the set's first cyclic clip of it) or a clip name. The paper's core nodes are "the
   // cyclic walking motions": walking, turning both ways and a slower walk. Standing (idle) is left out on

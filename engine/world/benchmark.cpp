@@ -104,7 +104,7 @@ std::string set_source_name(const MotionSet& set) { return set.manifest_path.emp
 SarsaBenchmark benchmark_sarsa(const MotionSet& set, const Params& params, std::int64_t max_steps) {
   const ActionTable table = tabulate_action_effects(set, params);
   const StateSpace states(params.quantization, table.motions);
-  const ActionSpace actions(table.motions, table.alpha_levels);
+  const ActionSpace actions(table.motions, table.alpha_levels, action_levels(params.quantization));
   const Environment env(states, actions, table, params.reward);
   SarsaParams sp = params.sarsa;
   sp.max_steps = max_steps;

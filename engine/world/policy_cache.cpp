@@ -56,7 +56,7 @@ Policy train_policy(const MotionSet& set, const MotionGraph& graph, const Params
   const ActionTable table = tabulate_action_effects(set, params);
   const std::vector<const MotionClip*> core = core_clips(set, params.quantization);
   const StateSpace states(params.quantization, table.motions);
-  const ActionSpace actions(table.motions, table.alpha_levels, core_next(set, graph, core));
+  const ActionSpace actions(table.motions, table.alpha_levels, core_next(set, graph, core), action_levels(params.quantization));
   const Environment env(states, actions, table, params.reward);
   const TrainingResult r = train_sarsa(env, params.sarsa, options);
 

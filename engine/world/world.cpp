@@ -404,7 +404,6 @@ void World::control(int index) {
     if (c.control == Control::User && auto_launch_ && c.source_character >= 0) in.goal = c.source;
     // No source: one far behind, beyond the last distance bin, never to be reached (world.h).
     in.source = c.has_source ? c.source : c.position - 100.0f * forward_of(c.heading);
-    ctl.set_level_cap(preparation_ ? -1 : 0);  // the naive baseline chooses among what it plays (controller.h)
     const ControlDecision d = ctl.decide(in);
     c.motion = d.motion;
     c.chosen_alpha = d.alpha;

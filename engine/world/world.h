@@ -228,6 +228,9 @@ class World {
   bool auto_launch() const { return auto_launch_; }
   // Preparation off = the naive baseline of issue 9 (motion-graph concatenation): the controller still
   // picks motions, but synthesis gets alpha 0 and the characters' reported alpha is 0 until a launch.
+  // The controller chooses among all its actions, as with preparation, and only the played stride is the
+  // unprepared one: limited to level-0 actions it met Q values of states its training rarely reached
+  // with alpha 0 near the source, and circled the ball instead of kicking it.
   void set_preparation(bool on) { preparation_ = on; }
   bool preparation() const { return preparation_; }
   // The user's source of influence picked by hand (the demo's mouse): objects()[object] (an opponent

@@ -151,4 +151,16 @@ TEST_CASE("Next(m) restricts the actions") {
   CHECK(graph.decode(graph.index({3, 4})).alpha_level == 4);
   CHECK_THROWS_AS(ActionSpace(4, 6, {{0}, {}, {1}, {2}}), std::invalid_argument);
   CHECK_THROWS_AS(ActionSpace(5, 13), std::invalid_argument);  // 65 actions
+  // The paper's configuration: actions choose among 5 levels (0 .. 0.8), the sixth (1) is the forcing's.
+  const Params params;
+  REQUIRE(action_levels(params.quantization) == 5);
+  const ActionSpace paper(4, 6, action_levels(params.quantization));
+  CHECK(paper.size() == 24);               // the table and the Q rows keep all six levels
+  CHECK(paper.allowed(0).size() == 20);
+  for (int a : paper.allowed(2)) CHECK(paper.decode(a).alpha_level < 5);
+  // Rebuilt from a policy file's masks, exactly.
+  const ActionSpace again = ActionSpace::from_masks(4, 6, {paper.allowed_mask(0), paper.allowed_mask(1), paper.allowed_mask(2), paper.allowed_mask(3)});
+  for (int m = 0; m < 4; ++m) CHECK(again.allowed_mask(m) == paper.allowed_mask(m));
+  CHECK_THROWS_AS(ActionSpace::from_masks(4, 6, {0, 1, 1, 1}), std::invalid_argument);
+  CHECK_THROWS_AS(ActionSpace::from_masks(4, 6, {std::uint64_t{1} << 30, 1, 1, 1}), std::invalid_argument);
 }

@@ -93,12 +93,12 @@ inline std::shared_ptr<const Policy> hand_made_policy(const Params& params, cons
   TrainingResult r;
   r.q = std::move(q);
   return std::make_shared<const Policy>(
-      make_policy(params, world.table, ActionSpace(states.motions(), states.alpha_levels()), r, "kick"));
+      make_policy(params, world.table, ActionSpace(states.motions(), states.alpha_levels(), action_levels(params.quantization)), r, "kick"));
 }
 
 inline Environment make_environment(const Params& params, const ActionTable& table) {
   const StateSpace states(params.quantization);
-  return Environment(states, ActionSpace(states.motions(), states.alpha_levels()), table, params.reward);
+  return Environment(states, ActionSpace(states.motions(), states.alpha_levels(), action_levels(params.quantization)), table, params.reward);
 }
 
 }  // namespace prep::test
