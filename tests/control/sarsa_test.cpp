@@ -1,8 +1,11 @@
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
+#include <vector>
 
 #include "engine/control/evaluation.h"
 #include "engine/control/policy.h"
@@ -61,4 +64,44 @@ TEST_CASE("training refuses impossible settings") {
   bad = params.sarsa;
   bad.discount = 1.0f;
   CHECK_THROWS_AS(train_sarsa(env, bad), std::invalid_argument);
+}
+
+namespace {
+// The greedy choice written the plain way: the first allowed action holding the largest allowed value (by
+// `>`, so a NaN never wins). greedy_action must agree with it exactly.
+int greedy_by_scan(const float* row, std::uint64_t allowed, int n) {
+  int best = -1;
+  for (int a = 0; a < n; ++a)
+    if ((allowed >> a & 1u) && (best < 0 || row[a] > row[best] || std::isnan(row[best]))) best = a;
+  return best;
+}
+}  // namespace
+
+TEST_CASE("greedy_action picks the first allowed action holding the allowed maximum, for every row width") {
+  Rng rng(7);
+  const float specials[] = {0.0f, -0.0f, 1.0f, -1.0f, std::numeric_limits<float>::infinity(),
+                            -std::numeric_limits<float>::infinity(), std::nanf("")};
+  std::vector<float> row(64);
+  int with_ties = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const int n = 1 + rng.below(64);
+    std::uint64_t allowed = 0;
+    while (allowed == 0)
+      for (int a = 0; a < n; ++a) allowed |= static_cast<std::uint64_t>(rng.uniform() < 0.7f) << a;
+    // Few distinct values, so ties (also +0 against -0) and specials are common.
+    for (int a = 0; a < n; ++a)
+      row[static_cast<size_t>(a)] = rng.uniform() < 0.1f ? specials[rng.below(7)] : static_cast<float>(rng.below(4)) * 0.25f;
+    const int expected = greedy_by_scan(row.data(), allowed, n);
+    if (std::isnan(row[static_cast<size_t>(expected)])) continue;  // only NaN allowed: no maximum (checked below)
+    CAPTURE(n);
+    CAPTURE(trial);
+    REQUIRE(greedy_action(row.data(), allowed, n) == expected);
+    int holders = 0;
+    for (int a = 0; a < n; ++a) holders += (allowed >> a & 1u) && row[static_cast<size_t>(a)] == row[static_cast<size_t>(expected)];
+    with_ties += holders > 1;
+  }
+  CHECK(with_ties > 1000);
+  // Every allowed value NaN: the lowest allowed action.
+  std::fill(row.begin(), row.end(), std::nanf(""));
+  CHECK(greedy_action(row.data(), 0b101000, 24) == 3);
 }
