@@ -48,13 +48,12 @@ RewardModel::RewardModel(const RewardParams& p, int alpha_levels, float alpha_st
       goal_radius_(p.goal_radius),
       source_radius_(p.source_radius),
       max_reward_(p.w_theta + p.w_d + p.w_alpha) {
-  steadiness_.resize(static_cast<size_t>(levels_ * levels_));
-  source_steadiness_.resize(steadiness_.size());
+  steadiness_.resize(static_cast<size_t>(2 * levels_ * levels_));
   for (int from = 0; from < levels_; ++from)
     for (int to = 0; to < levels_; ++to) {
       const float a = static_cast<float>(from) * alpha_step, b = static_cast<float>(to) * alpha_step;
       steadiness_[static_cast<size_t>(from * levels_ + to)] = p.w_alpha * reward_steadiness(a, b, p);
-      source_steadiness_[static_cast<size_t>(from * levels_ + to)] = p.w_alpha * reward_steadiness_at_source(a, b, p);
+      steadiness_[static_cast<size_t>((levels_ + from) * levels_ + to)] = p.w_alpha * reward_steadiness_at_source(a, b, p);
     }
 }
 

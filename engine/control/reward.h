@@ -69,8 +69,8 @@ class RewardModel {
 
   float operator()(float theta_g_next_abs, float d_g, float d_g_next, int alpha_level, int action_level,
                    bool at_source) const {
-    const float steady = at_source ? source_steadiness_[static_cast<size_t>(alpha_level * levels_ + action_level)]
-                                   : steadiness_[static_cast<size_t>(alpha_level * levels_ + action_level)];
+    // One table, the source's half second: an index, not a branch (at_source is hard to predict).
+    const float steady = steadiness_[static_cast<size_t>(((at_source ? levels_ : 0) + alpha_level) * levels_ + action_level)];
     return facing_bias_ - facing_slope_ * theta_g_next_abs +  // w_theta * Eq. 14
            approach_bias_ + approach_slope_ * (d_g - d_g_next) +  // w_d * Eq. 15
            steady;                                               // w_alpha * Eq. 16
@@ -83,8 +83,9 @@ class RewardModel {
   int levels_;
   float facing_bias_, facing_slope_, approach_bias_, approach_slope_;
   float goal_radius_, source_radius_, max_reward_;
-  std::vector<float> steadiness_;         // w_alpha * f_alpha(from level, to level)
-  std::vector<float> source_steadiness_;  // the same with the jump to 1 at the source
+  // w_alpha * f_alpha(from level, to level) at [from * levels + to], then the same with the jump to 1 at the
+  // source at [(levels + from) * levels + to].
+  std::vector<float> steadiness_;
 };
 
 }  // namespace prep

@@ -45,6 +45,10 @@ StateSpace::StateSpace(const QuantizationParams& q, int core_motions)
                       theta_i_bins_;
   if (n > (1ll << 30)) throw std::invalid_argument("quantization: too many states (" + std::to_string(n) + ")");
   size_ = static_cast<int>(n);
+  stride_theta_g_ = d_i_bins_ * theta_i_bins_;
+  stride_d_g_ = theta_g_bins_ * stride_theta_g_;
+  stride_motion_ = d_g_bins_ * stride_d_g_;
+  stride_alpha_ = motions_ * stride_motion_;
   inv_d_step_ = 1.0f / d_step_;
   inv_theta_g_step_ = 1.0f / theta_g_step_;
   inv_theta_i_step_ = 1.0f / theta_i_step_;

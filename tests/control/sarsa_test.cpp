@@ -105,3 +105,31 @@ TEST_CASE("greedy_action picks the first allowed action holding the allowed maxi
   std::fill(row.begin(), row.end(), std::nanf(""));
   CHECK(greedy_action(row.data(), 0b101000, 24) == 3);
 }
+
+TEST_CASE("the training step's bearings and distances are fast_atan2's and sqrt's bit for bit") {
+  // update_polar takes the goal's and the source's together (four lanes, no branches where SSE2 is there);
+  // it must give the scalar values exactly, signed zeros, the origin and non-finite input included.
+  Rng rng(11);
+  const float specials[] = {0.0f, -0.0f, 1.0f, -1.0f, 1e-30f, -1e-30f, 3.0f, -3.0f,
+                            std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity(), std::nanf("")};
+  auto component = [&] {
+    return rng.uniform() < 0.2f ? specials[rng.below(11)] : rng.uniform(-10.0f, 10.0f);
+  };
+  auto same = [](float a, float b) { return std::memcmp(&a, &b, sizeof(float)) == 0 || (std::isnan(a) && std::isnan(b)); };
+  int diagonal = 0;
+  for (int trial = 0; trial < 100000; ++trial) {
+    Situation s;
+    s.goal_left = component();
+    s.goal_forward = trial % 7 == 0 ? s.goal_left : component();  // the octant boundary |left| = |forward|
+    s.source_left = component();
+    s.source_forward = trial % 5 == 0 ? -s.source_left : component();
+    diagonal += std::fabs(s.goal_left) == std::fabs(s.goal_forward);
+    s.update_polar();
+    CAPTURE(trial);
+    REQUIRE(same(s.theta_g, fast_atan2(s.goal_left, s.goal_forward)));
+    REQUIRE(same(s.theta_i, fast_atan2(s.source_left, s.source_forward)));
+    REQUIRE(same(s.d_g, std::sqrt(s.goal_left * s.goal_left + s.goal_forward * s.goal_forward)));
+    REQUIRE(same(s.d_i, std::sqrt(s.source_left * s.source_left + s.source_forward * s.source_forward)));
+  }
+  CHECK(diagonal > 10000);
+}
