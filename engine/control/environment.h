@@ -109,14 +109,7 @@ class Environment {
 
   // Eq. 11: the quantized state of a situation.
   int quantize(const Situation& s) const {
-    StateBins b;
-    b.alpha = s.alpha_level;
-    b.motion = s.motion;
-    b.d_g = states_.d_g_bin(s.d_g);
-    b.theta_g = states_.theta_g_bin(s.theta_g);
-    b.d_i = states_.d_i_bin(s.d_i);
-    b.theta_i = states_.theta_i_bin(s.theta_i);
-    return states_.index(b);
+    return states_.index_of(s.alpha_level, s.motion, s.d_g, s.theta_g, s.d_i, s.theta_i);
   }
 
   // Plays action a from s: moves and turns the character, applies Eq. 13 (and the forcing of alpha to 1 at

@@ -52,6 +52,13 @@ StateSpace::StateSpace(const QuantizationParams& q, int core_motions)
   inv_d_step_ = 1.0f / d_step_;
   inv_theta_g_step_ = 1.0f / theta_g_step_;
   inv_theta_i_step_ = 1.0f / theta_i_step_;
+#if defined(__SSE2__)
+  lanes_.inv_step = _mm_setr_ps(inv_d_step_, inv_theta_g_step_, inv_d_step_, inv_theta_i_step_);
+  lanes_.offset = _mm_setr_ps(0.0f, 0.5f, 0.0f, 0.5f);
+  lanes_.top = _mm_setr_ps(static_cast<float>(d_g_bins_ - 1), 0.0f, static_cast<float>(d_i_bins_ - 1), 0.0f);
+  lanes_.bins = _mm_setr_epi32(d_g_bins_, theta_g_bins_, d_i_bins_, theta_i_bins_);
+  lanes_.is_distance = _mm_setr_epi32(-1, 0, -1, 0);
+#endif
 }
 
 int StateSpace::alpha_level(float alpha) const {

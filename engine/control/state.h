@@ -23,6 +23,10 @@
 #include <algorithm>
 #include <cstdint>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "engine/params/params.h"
 
 namespace prep {
@@ -71,6 +75,33 @@ class StateSpace {
   }
   StateBins decode(int index) const;
 
+  // Eq. 11 from the continuous components: index() of the four bins above. Where SSE2 is there the four
+  // bins are taken together, lane by lane with the same float operations as d_g_bin ... theta_i_bin (a
+  // distance lane adds 0 where a bearing adds 0.5, which changes no bin), falling back to them for
+  // anything out of the ordinary (a bearing more than a turn off, NaN). Per training step.
+  int index_of(int alpha, int motion, float d_g, float theta_g, float d_i, float theta_i) const {
+#if defined(__SSE2__)
+    const __m128 k = _mm_add_ps(_mm_mul_ps(_mm_setr_ps(d_g, theta_g, d_i, theta_i), lanes_.inv_step), lanes_.offset);
+    // Distances: std::min(top, std::max(0, k)), i.e. c = k > 0 ? k : 0 (NaN: 0), then c < top ? c : top.
+    const __m128i distance = _mm_cvttps_epi32(_mm_min_ps(_mm_max_ps(k, _mm_setzero_ps()), lanes_.top));
+    // Bearings: the floor of k, then one turn up below 0.
+    const __m128 in_range = _mm_and_ps(_mm_cmpgt_ps(k, _mm_set1_ps(-1e6f)), _mm_cmplt_ps(k, _mm_set1_ps(1e6f)));
+    const __m128i truncated = _mm_cvttps_epi32(k);
+    const __m128i floor_k = _mm_add_epi32(truncated, _mm_castps_si128(_mm_cmplt_ps(k, _mm_cvtepi32_ps(truncated))));
+    const __m128i turn = _mm_and_si128(lanes_.bins, _mm_cmplt_epi32(floor_k, _mm_setzero_si128()));
+    const __m128i bearing = _mm_add_epi32(floor_k, turn);
+    const __m128i bearing_ok = _mm_and_si128(_mm_cmpgt_epi32(bearing, _mm_set1_epi32(-1)), _mm_cmplt_epi32(bearing, lanes_.bins));
+    const __m128i ok = _mm_or_si128(lanes_.is_distance, _mm_and_si128(_mm_castps_si128(in_range), bearing_ok));
+    if (_mm_movemask_epi8(ok) == 0xFFFF) {
+      const __m128i bins = _mm_or_si128(_mm_and_si128(lanes_.is_distance, distance), _mm_andnot_si128(lanes_.is_distance, bearing));
+      alignas(16) int b[4];
+      _mm_store_si128(reinterpret_cast<__m128i*>(b), bins);
+      return index({alpha, motion, b[0], b[1], b[2], b[3]});
+    }
+#endif
+    return index({alpha, motion, d_g_bin(d_g), theta_g_bin(theta_g), d_i_bin(d_i), theta_i_bin(theta_i)});
+  }
+
   // The continuous extent of a bin, for exploring starts: [lo, hi) in metres or radians (angles relative to
   // facing). The last distance bin is sampled as [k * step, (k + 1) * step).
   void distance_range(int bin, float& lo, float& hi) const;
@@ -105,6 +136,12 @@ class StateSpace {
   int alpha_levels_, motions_, d_g_bins_, theta_g_bins_, d_i_bins_, theta_i_bins_;
   int size_;
   int stride_alpha_, stride_motion_, stride_d_g_, stride_theta_g_;  // index(): states per step of each component
+#if defined(__SSE2__)
+  struct Lanes {  // index_of(): per lane d_g, theta_g, d_i, theta_i
+    __m128 inv_step, offset, top;
+    __m128i bins, is_distance;
+  } lanes_;
+#endif
   float d_step_, theta_g_step_, theta_i_step_, alpha_step_;
   float inv_d_step_, inv_theta_g_step_, inv_theta_i_step_;
 };

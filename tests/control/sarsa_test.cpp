@@ -133,3 +133,37 @@ TEST_CASE("the training step's bearings and distances are fast_atan2's and sqrt'
   }
   CHECK(diagonal > 10000);
 }
+
+TEST_CASE("the training step's state index is the bins' index exactly, bin edges and odd input included") {
+  // Environment::quantize takes the four bins together (StateSpace::index_of); it must agree with
+  // d_g_bin ... theta_i_bin everywhere: on bin edges, beyond the last distance bin, for bearings a turn or
+  // more off, negative distances, signed zeros, infinities and NaN.
+  for (const Params& params : {Params{}, test::small_params()}) {
+    const StateSpace states(params.quantization);
+    Rng rng(5);
+    const float odd[] = {0.0f, -0.0f, -1.0f, 1e9f, -1e9f, 7.0f, -7.0f, 3.14159265f, -3.14159265f,
+                         std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity(), std::nanf("")};
+    auto distance = [&] {
+      if (rng.uniform() < 0.1f) return odd[rng.below(12)];
+      if (rng.uniform() < 0.3f) return static_cast<float>(rng.below(states.d_g_bins() + 2)) * states.d_step();  // an edge
+      return rng.uniform(0.0f, 1.5f * states.d_step() * static_cast<float>(states.d_g_bins()));
+    };
+    auto bearing = [&](float step) {
+      if (rng.uniform() < 0.1f) return odd[rng.below(12)];
+      if (rng.uniform() < 0.3f) return (static_cast<float>(rng.below(17)) - 8.5f) * step;  // an edge
+      return rng.uniform(-3.14159265f, 3.14159265f);
+    };
+    int fast = 0;
+    for (int trial = 0; trial < 100000; ++trial) {
+      const int alpha = rng.below(states.alpha_levels()), motion = rng.below(states.motions());
+      const float d_g = distance(), d_i = distance();
+      const float theta_g = bearing(states.theta_g_step()), theta_i = bearing(states.theta_i_step());
+      const int expected = states.index({alpha, motion, states.d_g_bin(d_g), states.theta_g_bin(theta_g),
+                                         states.d_i_bin(d_i), states.theta_i_bin(theta_i)});
+      CAPTURE(trial);
+      REQUIRE(states.index_of(alpha, motion, d_g, theta_g, d_i, theta_i) == expected);
+      fast += std::fabs(theta_g) < 3.2f && std::fabs(theta_i) < 3.2f;
+    }
+    CHECK(fast > 50000);
+  }
+}
