@@ -9,6 +9,9 @@ jobs="$(nproc 2>/dev/null || echo 2)"
 (cd "$here/build" && ctest --output-on-failure -j "$jobs")
 
 echo "prep: tests again under AddressSanitizer + UndefinedBehaviorSanitizer"
-"$here/scripts/setup.sh" "$here/build-asan" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPREP_SANITIZE=ON -DPREP_BUILD_BENCH=OFF
+# -g1: line tables for the sanitizers' stack traces, without the full debug information that would
+# nearly double the compile time (engine/world/world.cpp: 75 s against 40 s of CPU).
+"$here/scripts/setup.sh" "$here/build-asan" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" \
+  -DPREP_SANITIZE=ON -DPREP_BUILD_BENCH=OFF
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 (cd "$here/build-asan" && ctest --output-on-failure -j "$jobs" -LE slow)

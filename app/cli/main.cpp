@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <exception>
 #include <iostream>
+#include <tuple>
 
 #include "app/cli/command.h"
 
@@ -17,7 +18,8 @@ int main(int argc, char** argv) {
                "Loads motion, synthesizes prepared movement, trains and evaluates controllers."};
   app.require_subcommand(1);
   auto& cmds = prep::cli::commands();
-  std::sort(cmds.begin(), cmds.end(), [](const auto& a, const auto& b) { return a.order < b.order; });
+  // By order, then name: the registration order depends on how the files were linked.
+  std::sort(cmds.begin(), cmds.end(), [](const auto& a, const auto& b) { return std::tie(a.order, a.name) < std::tie(b.order, b.name); });
   for (auto& c : cmds) c.define(*app.add_subcommand(c.name, c.help));
   try {
     app.parse(argc, argv);
