@@ -148,36 +148,50 @@ void DemoApp::frame(float dt) {
   renderer_->shadow_pass();
   finish_stage(kShadow, t, true);
 
+  // The panels are laid out before the scene is drawn (ImGui's frame logic; nothing is drawn yet), so that
+  // this frame's panel rectangles are known to the main pass: the scene is not shaded under them, and their
+  // backgrounds are plain clears instead of ImGui's blended, textured quads (most of ImGui's cost on
+  // llvmpipe). The panels draw everything else of themselves.
+  t = Clock::now();
+  panel_rects_.clear();
+  const bool starting = session_.phase() != SessionPhase::Running;
+  const bool ui = view.show_panels || starting || !view.caption.empty();
+  if (ui) {
+    ui_->begin_frame(width, height, dt);
+    draw_panels();
+  }
+  std::vector<glm::vec4> covered;
+  const ImVec2 scale = ui ? ImGui::GetIO().DisplayFramebufferScale : ImVec2(1.0f, 1.0f);  // display units -> pixels
+  for (const auto& [name, r] : panel_rects_) covered.push_back(r * glm::vec4(scale.x, scale.y, scale.x, scale.y));
+  double panels_ms = ms_since(t);
+
   t = Clock::now();
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  // The panels that stood still over the last two frames will cover the same pixels now: skip the scene
-  // there. A panel that moves (dragged, resized) is drawn over a fully drawn scene until it rests again.
-  std::vector<glm::vec4> covered;
-  if (view.show_panels) {
-    // Panel rectangles are in ImGui's display units; the framebuffer may have more pixels (high density).
-    const ImVec2 scale = ImGui::GetIO().DisplayFramebufferScale;
-    for (const auto& [name, r] : panel_rects_) {
-      const auto before = previous_panel_rects_.find(name);
-      if (before != previous_panel_rects_.end() && before->second == r)
-        covered.push_back(r * glm::vec4(scale.x, scale.y, scale.x, scale.y));
-    }
-  }
-  renderer_->set_covered(std::move(covered));
+  renderer_->set_covered(covered);
   renderer_->main_pass(view.camera, 0, 0, width, height);
   last_view_projection_ = view.camera.view_projection(static_cast<float>(width) / std::max(height, 1));
   overlay_->draw(scene_, last_view_projection_);
   finish_stage(kMainPass, t, true);
 
   t = Clock::now();
-  previous_panel_rects_ = std::move(panel_rects_);
-  panel_rects_.clear();
-  const bool starting = session_.phase() != SessionPhase::Running;
-  if (view.show_panels || starting || !view.caption.empty()) {
-    ui_->begin_frame(width, height, dt);
-    draw_panels();
+  if (ui) {
+    const ImVec4 bg = ImGui::GetStyle().Colors[ImGuiCol_WindowBg];
+    glEnable(GL_SCISSOR_TEST);
+    glClearColor(bg.x, bg.y, bg.z, 1.0f);
+    for (const glm::vec4& r : covered) {
+      const int x0 = std::max(0, static_cast<int>(std::lround(r.x))), y0 = std::max(0, static_cast<int>(std::lround(r.y)));
+      const int x1 = std::min(width, static_cast<int>(std::lround(r.x + r.z)));
+      const int y1 = std::min(height, static_cast<int>(std::lround(r.y + r.w)));
+      if (x1 <= x0 || y1 <= y0) continue;
+      glScissor(x0, height - y1, x1 - x0, y1 - y0);  // GL's origin is the bottom-left
+      glClear(GL_COLOR_BUFFER_BIT);
+    }
+    glDisable(GL_SCISSOR_TEST);
     ui_->end_frame();
   }
-  finish_stage(kPanels, t, true);
+  if (sync_stages) glFinish();
+  panels_ms += ms_since(t);
+  if (timed) timings.add(kPanels, panels_ms);
 }
 
 void DemoApp::remember_panel(const char* name) {

@@ -104,7 +104,7 @@ class DemoApp final : public WindowApp {
   std::unique_ptr<render::Overlay> overlay_;
   std::unique_ptr<render::ImGuiLayer> ui_;
   render::Scene scene_;
-  std::map<std::string, glm::vec4> panel_rects_, previous_panel_rects_;
+  std::map<std::string, glm::vec4> panel_rects_;
   glm::mat4 last_view_projection_{1.0f};
   std::string gl_description_;
   Clock::time_point last_frame_start_;

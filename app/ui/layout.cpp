@@ -5,7 +5,7 @@
 
 namespace prep::ui {
 
-static_assert(kPanelFlags == ImGuiWindowFlags_AlwaysAutoResize, "panels.h spells the flag out");
+static_assert(kPanelFlags == (ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoBackground), "panels.h spells the flags out");
 
 void place_panel(demo::DemoApp& app, bool right_column, const char* below, float width) {
   const float x = right_column ? static_cast<float>(app.width()) - width - kMargin : kMargin;

@@ -24,7 +24,9 @@ void camera_panel(demo::DemoApp& app);       // follow, orbit, zoom, keys
 // to their content (ImGuiWindowFlags_AlwaysAutoResize), which takes ImGui a few frames, so the places are
 // imposed over the first frames only; afterwards a panel stays where the user drags it.
 void place_panel(demo::DemoApp& app, bool right_column, const char* below, float width);
-constexpr int kPanelFlags = 1 << 6;  // ImGuiWindowFlags_AlwaysAutoResize (imgui.h is not included here)
+// ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoBackground (imgui.h is not included here): the
+// DemoApp clears each remembered panel's rectangle to the window colour instead (demo_app.cpp).
+constexpr int kPanelFlags = (1 << 6) | (1 << 7);
 
 // Panel geometry shared by the panels (pixels).
 constexpr float kMargin = 10.0f;

@@ -10,7 +10,7 @@ void startup_panel(demo::DemoApp& app) {
   const ImVec2 centre(0.5f * static_cast<float>(app.width()), 0.5f * static_cast<float>(app.height()));
   ImGui::SetNextWindowPos(ImVec2(centre.x, centre.y * 0.35f), ImGuiCond_Always, ImVec2(0.5f, 0.5f));
   ImGui::SetNextWindowSize(ImVec2(420.0f, 0.0f), ImGuiCond_Always);
-  const ImGuiWindowFlags flags = ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoMove;
+  const ImGuiWindowFlags flags = ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoMove | kPanelFlags;
   if (ImGui::Begin("Starting", nullptr, flags)) {
     ImGui::Text("%s", s.scenario().name.c_str());
     ImGui::TextWrapped("%s", s.status().c_str());
