@@ -40,8 +40,15 @@
 // tried flags and its own generator (seeded from the seed and the worker's index through splitmix64), and
 // runs its share of the round's episodes (E / T each, the first E mod T workers one more). At the end of every round
 // the replicas are merged in worker order: each Q value touched by n workers becomes the master value plus
-// the mean of their changes; tried flags are OR-ed; every replica restarts from the merged table. So the
+// the mean of their changes; tried flags are OR-ed; every replica restarts from the merged table (each
+// worker copies the merged rows into its own replica at the start of its next round, in parallel). So the
 // same seed and thread count give the same Q bit for bit, whatever the scheduling.
+//
+// Speed (issue 9). A training step is about 440 instructions (callgrind), with few mispredicted branches:
+// the Q rows are padded to blocks of four actions with -infinity where an action is not allowed, so the
+// greedy choice is a four-wide maximum (sarsa.cpp); the goal's and the source's bearings and distances
+// are one four-wide pass (environment.h), as are the four bins of the state (state.h). Each of these
+// computes the same float operations as the plain code, so the trained table is the same bit for bit.
 #pragma once
 
 #include <cstdint>
