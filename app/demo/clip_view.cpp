@@ -112,8 +112,9 @@ render::Camera strip_camera(const DemoClip& c) {
     forward_kinematics(*c.clip.skeleton, pose, world);
     for (const glm::vec3& p : world) top = std::max(top, p.y);
   }
-  const float margin = 0.25f;  // m above the head and below the floor line
-  camera.ortho_height = top + 2.0f * margin;
+  const float margin = 0.25f;  // m below the floor line, and above the head with the tile's caption
+  const float head = 0.15f;    // m: the top of the head above its highest joint (the skull's end site is not a joint)
+  camera.ortho_height = top + head + 2.0f * margin;
   const glm::vec3 forward = travel_direction(c.clip);
   const glm::vec3 right(-forward.z, 0.0f, forward.x);
   camera.yaw = std::atan2(right.x, right.z);
