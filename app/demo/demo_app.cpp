@@ -37,7 +37,11 @@ DemoApp::DemoApp(render::GlContext& context, WorldSession& session, GLFWwindow* 
   last_frame_start_ = Clock::now();
 }
 
-DemoApp::~DemoApp() { context_.make_current(); }
+DemoApp::~DemoApp() {
+  context_.make_current();
+  if (panel_cache_.framebuffer) glDeleteFramebuffers(1, &panel_cache_.framebuffer);
+  if (panel_cache_.texture) glDeleteTextures(1, &panel_cache_.texture);
+}
 
 int DemoApp::triangles() const { return renderer_->triangles_last_frame() + overlay_->triangles_last_frame(); }
 
@@ -173,25 +177,103 @@ void DemoApp::frame(float dt) {
   overlay_->draw(scene_, last_view_projection_);
   finish_stage(kMainPass, t, true);
 
+  // Drawing the panels (ImGui's textured, blended glyph quads) is a quarter of a frame on llvmpipe, and
+  // idle panels change only in their figures. So while nobody works them (no mouse over them, no key held,
+  // no popup open), their pixels from the last drawing are copied back into their rectangles, and they are
+  // drawn anew every kPanelRedrawFrames frames (10 times a second at 60 frames/s) or whenever they move,
+  // resize or are worked. ImGui's frame logic still runs every frame, so input is never missed.
   t = Clock::now();
   if (ui) {
-    const ImVec4 bg = ImGui::GetStyle().Colors[ImGuiCol_WindowBg];
-    glEnable(GL_SCISSOR_TEST);
-    glClearColor(bg.x, bg.y, bg.z, 1.0f);
-    for (const glm::vec4& r : covered) {
-      const int x0 = std::max(0, static_cast<int>(std::lround(r.x))), y0 = std::max(0, static_cast<int>(std::lround(r.y)));
-      const int x1 = std::min(width, static_cast<int>(std::lround(r.x + r.z)));
-      const int y1 = std::min(height, static_cast<int>(std::lround(r.y + r.w)));
-      if (x1 <= x0 || y1 <= y0) continue;
-      glScissor(x0, height - y1, x1 - x0, y1 - y0);  // GL's origin is the bottom-left
-      glClear(GL_COLOR_BUFFER_BIT);
+    if (panels_need_redraw(covered, width, height) || starting || !view.caption.empty()) {
+      const ImVec4 bg = ImGui::GetStyle().Colors[ImGuiCol_WindowBg];
+      glEnable(GL_SCISSOR_TEST);
+      glClearColor(bg.x, bg.y, bg.z, 1.0f);
+      for (const glm::vec4& r : covered) {
+        const int x0 = std::max(0, static_cast<int>(std::lround(r.x))), y0 = std::max(0, static_cast<int>(std::lround(r.y)));
+        const int x1 = std::min(width, static_cast<int>(std::lround(r.x + r.z)));
+        const int y1 = std::min(height, static_cast<int>(std::lround(r.y + r.w)));
+        if (x1 <= x0 || y1 <= y0) continue;
+        glScissor(x0, height - y1, x1 - x0, y1 - y0);  // GL's origin is the bottom-left
+        glClear(GL_COLOR_BUFFER_BIT);
+      }
+      glDisable(GL_SCISSOR_TEST);
+      ui_->end_frame();
+      store_panels(covered, width, height);
+    } else {
+      ui_->end_frame_without_drawing();
+      restore_panels(width, height);
     }
-    glDisable(GL_SCISSOR_TEST);
-    ui_->end_frame();
   }
   if (sync_stages) glFinish();
   panels_ms += ms_since(t);
   if (timed) timings.add(kPanels, panels_ms);
+}
+
+bool DemoApp::panels_need_redraw(const std::vector<glm::vec4>& covered, int width, int height) const {
+  const PanelCache& c = panel_cache_;
+  if (!c.framebuffer || c.width != width || c.height != height || c.rects != covered) return true;
+  if (c.frames_since_redraw + 1 >= kPanelRedrawFrames) return true;
+  const ImGuiIO& io = ImGui::GetIO();
+  bool mouse_down = false;
+  for (bool down : io.MouseDown) mouse_down = mouse_down || down;
+  // Anything drawn outside the remembered rectangles (a popup, a tooltip) or a widget being worked.
+  return io.WantCaptureMouse || io.WantCaptureKeyboard || io.WantTextInput || mouse_down ||
+         ImGui::IsPopupOpen(nullptr, ImGuiPopupFlags_AnyPopupId | ImGuiPopupFlags_AnyPopupLevel);
+}
+
+// Pixel rectangles of the cache: covered rectangles rounded out to whole pixels, in GL's bottom-left origin.
+static bool gl_rect(const glm::vec4& r, int width, int height, int& x0, int& y0, int& x1, int& y1) {
+  x0 = std::max(0, static_cast<int>(std::floor(r.x)));
+  x1 = std::min(width, static_cast<int>(std::ceil(r.x + r.z)));
+  const int top = std::max(0, static_cast<int>(std::floor(r.y))), bottom = std::min(height, static_cast<int>(std::ceil(r.y + r.w)));
+  y0 = height - bottom;
+  y1 = height - top;
+  return x1 > x0 && y1 > y0;
+}
+
+void DemoApp::store_panels(const std::vector<glm::vec4>& covered, int width, int height) {
+  PanelCache& c = panel_cache_;
+  if (!c.framebuffer || c.width != width || c.height != height) {
+    if (!c.framebuffer) {
+      glGenFramebuffers(1, &c.framebuffer);
+      glGenTextures(1, &c.texture);
+    }
+    glBindTexture(GL_TEXTURE_2D, c.texture);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glBindFramebuffer(GL_FRAMEBUFFER, c.framebuffer);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, c.texture, 0);
+    const bool complete = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    if (!complete) {  // no cache: the panels are simply drawn every frame
+      glDeleteFramebuffers(1, &c.framebuffer);
+      glDeleteTextures(1, &c.texture);
+      c = PanelCache{};
+      return;
+    }
+    c.width = width;
+    c.height = height;
+  }
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, c.framebuffer);
+  int x0, y0, x1, y1;
+  for (const glm::vec4& r : covered)
+    if (gl_rect(r, width, height, x0, y0, x1, y1)) glBlitFramebuffer(x0, y0, x1, y1, x0, y0, x1, y1, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  c.rects = covered;
+  c.frames_since_redraw = 0;
+}
+
+void DemoApp::restore_panels(int width, int height) {
+  PanelCache& c = panel_cache_;
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, c.framebuffer);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+  int x0, y0, x1, y1;
+  for (const glm::vec4& r : c.rects)
+    if (gl_rect(r, width, height, x0, y0, x1, y1)) glBlitFramebuffer(x0, y0, x1, y1, x0, y0, x1, y1, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  ++c.frames_since_redraw;
 }
 
 void DemoApp::remember_panel(const char* name) {

@@ -97,6 +97,16 @@ class DemoApp final : public WindowApp {
   void draw_panels();
   glm::vec2 camera_forward() const;  // unit, on the floor
   glm::vec2 look_point() const;      // where the followed camera aims, on the floor
+  // The panels' pixels, kept between their redraws (demo_app.cpp, the panels stage).
+  struct PanelCache {
+    unsigned int framebuffer = 0, texture = 0;  // GL names
+    int width = 0, height = 0;
+    std::vector<glm::vec4> rects;  // framebuffer pixels from the top-left, as the main pass was given them
+    int frames_since_redraw = 0;
+  };
+  bool panels_need_redraw(const std::vector<glm::vec4>& covered, int width, int height) const;
+  void store_panels(const std::vector<glm::vec4>& covered, int width, int height);
+  void restore_panels(int width, int height);
 
   render::GlContext& context_;
   WorldSession& session_;
@@ -111,6 +121,8 @@ class DemoApp final : public WindowApp {
   int frames_drawn_ = 0;
   static constexpr int kUntimedFrames = 3;
   int panel_frames_ = 0;
+  PanelCache panel_cache_;
+  static constexpr int kPanelRedrawFrames = 6;  // at most this many frames between two redraws of idle panels
   bool camera_placed_ = false;  // reset_camera() ran for the world now running
   const World* camera_world_ = nullptr;
   glm::vec2 initial_goal_{0.0f};

@@ -45,4 +45,6 @@ void ImGuiLayer::end_frame() {
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 }
 
+void ImGuiLayer::end_frame_without_drawing() { ImGui::EndFrame(); }
+
 }  // namespace prep::render

@@ -20,6 +20,8 @@ class ImGuiLayer {
   void begin_frame(int width, int height, float dt);
   // Renders the frame's panels into the current framebuffer.
   void end_frame();
+  // Ends the frame's logic (input, layout) without drawing it: the caller shows the panels' last pixels.
+  void end_frame_without_drawing();
 
  private:
   GLFWwindow* window_;
