@@ -117,6 +117,27 @@ void DemoApp::skip_frame(float dt) {
   update_camera(dt);
 }
 
+// A panel rectangle (pixels from the top-left) rounded out to whole pixels, in GL's bottom-left origin: what
+// is cleared, stored and restored of each panel.
+static bool gl_rect(const glm::vec4& r, int width, int height, int& x0, int& y0, int& x1, int& y1) {
+  x0 = std::max(0, static_cast<int>(std::floor(r.x)));
+  x1 = std::min(width, static_cast<int>(std::ceil(r.x + r.z)));
+  const int top = std::max(0, static_cast<int>(std::floor(r.y))), bottom = std::min(height, static_cast<int>(std::ceil(r.y + r.w)));
+  y0 = height - bottom;
+  y1 = height - top;
+  return x1 > x0 && y1 > y0;
+}
+
+// Copies the rectangles' pixels from one framebuffer to the other (0: the window's).
+static void blit_rects(unsigned int from, unsigned int to, const std::vector<glm::vec4>& rects, int width, int height) {
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, from);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, to);
+  int x0, y0, x1, y1;
+  for (const glm::vec4& r : rects)
+    if (gl_rect(r, width, height, x0, y0, x1, y1)) glBlitFramebuffer(x0, y0, x1, y1, x0, y0, x1, y1, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
 void DemoApp::frame(float dt) {
   const auto frame_start = Clock::now();
   // The first frames compile shaders and build the font atlas: the averages start after them.
@@ -188,14 +209,12 @@ void DemoApp::frame(float dt) {
       const ImVec4 bg = ImGui::GetStyle().Colors[ImGuiCol_WindowBg];
       glEnable(GL_SCISSOR_TEST);
       glClearColor(bg.x, bg.y, bg.z, 1.0f);
-      for (const glm::vec4& r : covered) {
-        const int x0 = std::max(0, static_cast<int>(std::lround(r.x))), y0 = std::max(0, static_cast<int>(std::lround(r.y)));
-        const int x1 = std::min(width, static_cast<int>(std::lround(r.x + r.z)));
-        const int y1 = std::min(height, static_cast<int>(std::lround(r.y + r.w)));
-        if (x1 <= x0 || y1 <= y0) continue;
-        glScissor(x0, height - y1, x1 - x0, y1 - y0);  // GL's origin is the bottom-left
-        glClear(GL_COLOR_BUFFER_BIT);
-      }
+      int x0, y0, x1, y1;
+      for (const glm::vec4& r : covered)
+        if (gl_rect(r, width, height, x0, y0, x1, y1)) {
+          glScissor(x0, y0, x1 - x0, y1 - y0);
+          glClear(GL_COLOR_BUFFER_BIT);
+        }
       glDisable(GL_SCISSOR_TEST);
       ui_->end_frame();
       store_panels(covered, width, height);
@@ -219,16 +238,6 @@ bool DemoApp::panels_need_redraw(const std::vector<glm::vec4>& covered, int widt
   // Anything drawn outside the remembered rectangles (a popup, a tooltip) or a widget being worked.
   return io.WantCaptureMouse || io.WantCaptureKeyboard || io.WantTextInput || mouse_down ||
          ImGui::IsPopupOpen(nullptr, ImGuiPopupFlags_AnyPopupId | ImGuiPopupFlags_AnyPopupLevel);
-}
-
-// Pixel rectangles of the cache: covered rectangles rounded out to whole pixels, in GL's bottom-left origin.
-static bool gl_rect(const glm::vec4& r, int width, int height, int& x0, int& y0, int& x1, int& y1) {
-  x0 = std::max(0, static_cast<int>(std::floor(r.x)));
-  x1 = std::min(width, static_cast<int>(std::ceil(r.x + r.z)));
-  const int top = std::max(0, static_cast<int>(std::floor(r.y))), bottom = std::min(height, static_cast<int>(std::ceil(r.y + r.w)));
-  y0 = height - bottom;
-  y1 = height - top;
-  return x1 > x0 && y1 > y0;
 }
 
 void DemoApp::store_panels(const std::vector<glm::vec4>& covered, int width, int height) {
@@ -255,24 +264,14 @@ void DemoApp::store_panels(const std::vector<glm::vec4>& covered, int width, int
     c.width = width;
     c.height = height;
   }
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, c.framebuffer);
-  int x0, y0, x1, y1;
-  for (const glm::vec4& r : covered)
-    if (gl_rect(r, width, height, x0, y0, x1, y1)) glBlitFramebuffer(x0, y0, x1, y1, x0, y0, x1, y1, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  blit_rects(0, c.framebuffer, covered, width, height);
   c.rects = covered;
   c.frames_since_redraw = 0;
 }
 
 void DemoApp::restore_panels(int width, int height) {
   PanelCache& c = panel_cache_;
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, c.framebuffer);
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-  int x0, y0, x1, y1;
-  for (const glm::vec4& r : c.rects)
-    if (gl_rect(r, width, height, x0, y0, x1, y1)) glBlitFramebuffer(x0, y0, x1, y1, x0, y0, x1, y1, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  blit_rects(c.framebuffer, 0, c.rects, width, height);
   ++c.frames_since_redraw;
 }
 
