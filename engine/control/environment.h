@@ -22,15 +22,21 @@
 
 namespace prep {
 
-// atan2 from a polynomial for atan on [0, 1] fitted by us (max error 1.2e-5 rad), then octant fix-ups.
+// atan(t) on [0, 1] as t * (c0 + s * (c1 + s * (c2 + s * (c3 + s * c4)))), s = t^2: a polynomial fitted by
+// us (max error 1.2e-5 rad). Shared by fast_atan2 and its four-lane version, which must agree bit for bit.
+constexpr float kAtanC0 = 0.99986642f, kAtanC1 = -0.33030633f, kAtanC2 = 0.18016580f, kAtanC3 = -0.08516615f,
+                kAtanC4 = 0.02084992f;
+constexpr float kHalfPiF = 1.57079633f, kPiF = 3.14159265f;
+
+// atan2 from that polynomial, then octant fix-ups.
 inline float fast_atan2(float y, float x) {
   const float ax = std::fabs(x), ay = std::fabs(y);
   const float hi = ax > ay ? ax : ay, lo = ax > ay ? ay : ax;
   if (hi == 0.0f) return 0.0f;
   const float t = lo / hi, s = t * t;
-  float r = t * (0.99986642f + s * (-0.33030633f + s * (0.18016580f + s * (-0.08516615f + s * 0.02084992f))));
-  if (ay > ax) r = 1.57079633f - r;
-  if (x < 0.0f) r = 3.14159265f - r;
+  float r = t * (kAtanC0 + s * (kAtanC1 + s * (kAtanC2 + s * (kAtanC3 + s * kAtanC4))));
+  if (ay > ax) r = kHalfPiF - r;
+  if (x < 0.0f) r = kPiF - r;
   return y < 0.0f ? -r : r;
 }
 
@@ -47,13 +53,13 @@ inline void fast_atan2_and_length_x4(__m128 y, __m128 x, __m128& angle, __m128& 
   const __m128 hi = _mm_max_ps(ax, ay), lo = _mm_min_ps(ay, ax);  // ax > ay ? ax : ay, ax > ay ? ay : ax
   const __m128 at_origin = _mm_cmpeq_ps(hi, zero);
   const __m128 t = _mm_div_ps(lo, select(at_origin, _mm_set1_ps(1.0f), hi)), s = _mm_mul_ps(t, t);  // origin: t = 0
-  __m128 p = _mm_add_ps(_mm_set1_ps(-0.08516615f), _mm_mul_ps(s, _mm_set1_ps(0.02084992f)));
-  p = _mm_add_ps(_mm_set1_ps(0.18016580f), _mm_mul_ps(s, p));
-  p = _mm_add_ps(_mm_set1_ps(-0.33030633f), _mm_mul_ps(s, p));
-  p = _mm_add_ps(_mm_set1_ps(0.99986642f), _mm_mul_ps(s, p));
+  __m128 p = _mm_add_ps(_mm_set1_ps(kAtanC3), _mm_mul_ps(s, _mm_set1_ps(kAtanC4)));
+  p = _mm_add_ps(_mm_set1_ps(kAtanC2), _mm_mul_ps(s, p));
+  p = _mm_add_ps(_mm_set1_ps(kAtanC1), _mm_mul_ps(s, p));
+  p = _mm_add_ps(_mm_set1_ps(kAtanC0), _mm_mul_ps(s, p));
   __m128 r = _mm_mul_ps(t, p);
-  r = select(_mm_cmpgt_ps(ay, ax), _mm_sub_ps(_mm_set1_ps(1.57079633f), r), r);
-  r = select(_mm_cmplt_ps(x, zero), _mm_sub_ps(_mm_set1_ps(3.14159265f), r), r);
+  r = select(_mm_cmpgt_ps(ay, ax), _mm_sub_ps(_mm_set1_ps(kHalfPiF), r), r);
+  r = select(_mm_cmplt_ps(x, zero), _mm_sub_ps(_mm_set1_ps(kPiF), r), r);
   r = _mm_xor_ps(r, _mm_and_ps(_mm_cmplt_ps(y, zero), sign));
   angle = _mm_andnot_ps(at_origin, r);  // the scalar version's early return of +0 (r is already +0 there)
 }
