@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <filesystem>
+#include <glm/trigonometric.hpp>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -12,6 +13,7 @@
 
 #include "engine/motion/bvh.h"
 #include "engine/motion/kinematics.h"
+#include "engine/motion/steer.h"
 #include "engine/util/error.h"
 #include "engine/util/files.h"
 
@@ -289,6 +291,7 @@ MotionSet load_motion_set(const std::string& manifest_path, const Params& params
     Role role;
     std::optional<std::array<int, 2>> frames, loop;
     std::optional<int> t_t;
+    std::optional<float> steer_deg_per_s;
     FloorRule floor;
     bool skip = false;
   };
@@ -298,7 +301,7 @@ MotionSet load_motion_set(const std::string& manifest_path, const Params& params
     const json& c = clips[i];
     Entry e;
     e.where = {"clips[" + std::to_string(i) + "]"};
-    reader.only_fields(c, e.where, {"name", "file", "role", "frames", "loop", "t_t", "floor", "skip_first_frame", "notes"});
+    reader.only_fields(c, e.where, {"name", "file", "role", "frames", "loop", "t_t", "steer_deg_per_s", "floor", "skip_first_frame", "notes"});
     e.file = reader.string_field(c, e.where, "file", true);
     e.name = reader.string_field(c, e.where, "name", false, fs::path(e.file).stem().string());
     e.where = {e.where.text + " (" + e.name + ")"};
@@ -315,6 +318,12 @@ MotionSet load_motion_set(const std::string& manifest_path, const Params& params
     e.frames = reader.range_field(c, e.where, "frames");
     e.loop = reader.range_field(c, e.where, "loop");
     e.t_t = reader.int_field(c, e.where, "t_t");
+    if (c.contains("steer_deg_per_s")) {
+      const json& v = c["steer_deg_per_s"];
+      if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() == 0.0 || std::abs(v.get<double>()) > 180.0)
+        reader.fail(e.where / "steer_deg_per_s", "must be a rate of turn in degrees per second, non-zero, at most 180 either way (positive: to the left)");
+      e.steer_deg_per_s = v.get<float>();
+    }
     e.floor = reader.floor_field(c, e.where).value_or(floor_default);
     e.skip = skip_default;
     if (c.contains("skip_first_frame")) {
@@ -323,7 +332,12 @@ MotionSet load_motion_set(const std::string& manifest_path, const Params& params
     }
     if (is_locomotion(e.role)) {
       if (e.t_t) reader.fail(e.where / "t_t", "only target motions (crawl, duck, jump, punches, kick) have a T_t; this clip is '" + role + "'");
+      if (e.steer_deg_per_s && ((e.role == Role::TurnLeft && *e.steer_deg_per_s < 0.0f) ||
+                                (e.role == Role::TurnRight && *e.steer_deg_per_s > 0.0f)))
+        reader.fail(e.where / "steer_deg_per_s", "turns the " + std::string(*e.steer_deg_per_s > 0.0f ? "left" : "right") +
+                                                     " way (positive is to the left), but the clip is '" + role + "'");
     } else {
+      if (e.steer_deg_per_s) reader.fail(e.where / "steer_deg_per_s", "only locomotion clips are steered; this clip is '" + role + "'");
       if (!e.t_t) reader.fail(e.where / "t_t", "missing: a target motion ('" + role + "') needs the first frame of its target movement");
       if (e.loop) reader.fail(e.where / "loop", "only locomotion clips loop; this clip is '" + role + "'");
     }
@@ -423,6 +437,10 @@ MotionSet load_motion_set(const std::string& manifest_path, const Params& params
     } else {
       const std::vector<float> floor = auto_floor(clip, set.body);
       for (size_t f = 0; f < clip.frames.size(); ++f) clip.frames[f].root_position.y -= floor[f];
+    }
+    if (e.steer_deg_per_s) {
+      mc.steer_rad_per_s = glm::radians(*e.steer_deg_per_s);
+      steer_clip(clip, set.body, detect_contacts(clip, set.body, params.contacts), mc.steer_rad_per_s);
     }
 
     if (e.loop) {

@@ -60,15 +60,24 @@ TEST_CASE("motion graph: the alignment recovers a clip moved on the floor, at di
   CHECK(g.distance(0, 20, b, 37, 6) > 0.05f);
 }
 
-TEST_CASE("motion graph: cmu31 hierarchy (two core nodes: walk and the left turn)") {
+TEST_CASE("motion graph: cmu31 hierarchy (core: the walk, the two turns steered from it, the recorded left turn)") {
   const MotionSet& set = manifest("cmu31");
   const MotionGraph g = MotionGraph::build(set, Params().graph);
   MESSAGE("cmu31 graph: " << g.nodes().size() << " nodes, " << g.edges().size() << " edges in " << g.build_seconds() << " s");
-  test::check_hierarchy(g, 2);
+  test::check_hierarchy(g, 4);
   CHECK(g.build_seconds() < 3.0f);
   const int walk = g.find("walk_69_01");
   REQUIRE(walk >= 0);
   CHECK(test::in_next(g, walk, walk));  // the walk loops
+  // The steered turns loop, and the walk and they lead into one another (the same poses, turned).
+  for (const char* turn : {"turn_left_69_01", "turn_right_69_01"}) {
+    CAPTURE(turn);
+    const int t = g.find(turn);
+    REQUIRE(t >= 0);
+    CHECK(test::in_next(g, t, t));
+    CHECK(test::in_next(g, walk, t));
+    CHECK(test::in_next(g, t, walk));
+  }
   // Edges enter a target before T_t and leave it after.
   for (const GraphEdge& e : g.edges()) {
     const MotionClip& to = set.clips[static_cast<size_t>(e.to)];
@@ -126,5 +135,5 @@ TEST_CASE("graphviz: one node per clip, core nodes as boxes") {
   for (const GraphNode& n : g.nodes()) CHECK(dot.find(n.name) != std::string::npos);
   size_t boxes = 0;
   for (size_t at = dot.find("shape=box"); at != std::string::npos; at = dot.find("shape=box", at + 1)) ++boxes;
-  CHECK(boxes == 2);
+  CHECK(boxes == 4);  // core: the walk, the two turns steered from it, the recorded left turn
 }

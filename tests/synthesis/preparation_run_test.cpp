@@ -151,7 +151,7 @@ float fraction_inside(const PreparationRun& run, const Params& params) {
 // reach: with the region the added trunk lean stays slight; without it Eq. 6-10 bend the trunk by tens of
 // degrees at every step, fling the arms half a metre, and still leave the COM outside the stance foot on a
 // quarter of the prepared frames (single support of a walk).
-TEST_CASE("balance optimizer: the trust region keeps the lean slight; without it the trunk bends and the COM is still outside") {
+TEST_CASE("balance optimizer: the trust region keeps the lean slight, without it the trunk bends and the COM is still outside") {
   const Params params;
   const MotionSet set = make_builtin_motion_set(params);
   const MotionClip* duck = nullptr;
