@@ -30,10 +30,10 @@ echo
 echo
 echo "### Quality on CMU motion capture"
 echo
-echo '`prep evaluate --scenario assets/scenarios/{kick_daz43,duck_cmu31,jump_cmu31,fight_cmu31}.json --seconds 30 --markdown --plot-dir assets/readme`'
+echo '`prep evaluate --scenario assets/scenarios/{kick_daz43,duck_cmu31,jump_cmu31,fight_cmu31}.json --seconds 45 --markdown --plot-dir assets/readme`'
 echo
 "$prep" evaluate --scenario assets/scenarios/kick_daz43.json --scenario assets/scenarios/duck_cmu31.json \
-  --scenario assets/scenarios/jump_cmu31.json --scenario assets/scenarios/fight_cmu31.json --seconds 30 \
+  --scenario assets/scenarios/jump_cmu31.json --scenario assets/scenarios/fight_cmu31.json --seconds 45 \
   --markdown --plot-dir "$out"
 echo
 echo "### Training curve (the paper's configuration, 19,200 states)"

@@ -144,7 +144,9 @@ void apply_foot_ik(const Skeleton& skeleton, const BodyMap& body, const IkParams
       target[side] = plant.toe_anchor - heel_to_toe;  // heel off: the foot rolls about its planted toe
     } else {
       // Free foot: the correction it had when it lifted off fades out, so the swing joins the blended pose
-      // without a jump. (It moves with the body, so a root drop below does not change its reach.)
+      // without a jump. It keeps its height when the pelvis is lowered below (its hip comes closer, so it
+      // stays in reach): carried down with the body it would swing through the floor and land as far below
+      // it, and the next stance, planted there, would ask for a deeper drop, step after step.
       plant.fade = std::max(0.0f, plant.fade - (params.release_s > 0.0f ? dt / params.release_s : 1.0f));
       target[side] = heel[side] + plant.offset * smoothstep01(plant.fade);
       continue;
@@ -171,7 +173,7 @@ void apply_foot_ik(const Skeleton& skeleton, const BodyMap& body, const IkParams
     const LegChain& leg = body.legs[side];
     FootPlant& plant = plants[side];
     const bool planted = plant.heel_planted || plant.toe_planted;
-    const glm::vec3 goal = planted ? target[side] : target[side] + body_shift;
+    const glm::vec3 goal = target[side];
     const glm::vec3 reached =
         solve_leg(skeleton, leg, params, pose, wp, wr, goal, foot_world[side], forward, body_shift);
     if (plant.heel_planted && plant.toe_planted) {
@@ -194,7 +196,7 @@ void apply_foot_ik(const Skeleton& skeleton, const BodyMap& body, const IkParams
       plant.toe_local = pose.rotations[static_cast<size_t>(leg.toe)];
     }
     if (plant.heel_planted || plant.toe_planted) {
-      plant.offset = reached - (heel[side] + body_shift);
+      plant.offset = reached - heel[side];
       plant.fade = 1.0f;
     }
   }
