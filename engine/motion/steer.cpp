@@ -18,17 +18,16 @@ glm::vec3 pivot_point(const FootPoints& feet, const FootContact& c, size_t side)
 
 }  // namespace
 
-std::vector<float> steer_clip(Clip& clip, const BodyMap& body, const std::vector<FrameContacts>& contacts, float rate) {
+void steer_clip(Clip& clip, const BodyMap& body, const std::vector<FrameContacts>& contacts, float rate) {
   const size_t n = clip.frames.size();
   if (contacts.size() != n) throw std::invalid_argument("steer_clip: one FrameContacts per frame is needed");
-  std::vector<float> gained(n, 0.0f);
-  if (n < 2 || !(clip.fps > 0.0f) || !clip.skeleton) return gained;
+  if (n < 2 || !(clip.fps > 0.0f) || !clip.skeleton) return;
 
   // Frames that turn: single support and flight; double support holds still. The rate while turning is
   // raised to keep the average.
   int turning = 0;
   for (size_t f = 1; f < n; ++f) turning += !(contacts[f][kLeft].any() && contacts[f][kRight].any());
-  if (turning == 0) return gained;  // always on both feet (standing): nothing to turn about
+  if (turning == 0) return;  // always on both feet (standing): nothing to turn about
   const float step_angle = rate * static_cast<float>(n - 1) / clip.fps / static_cast<float>(turning);
 
   // The floor transform applied to each source frame: x -> yaw * x + shift (x, z only), composed
@@ -36,7 +35,6 @@ std::vector<float> steer_clip(Clip& clip, const BodyMap& body, const std::vector
   const glm::vec3 up(0.0f, 1.0f, 0.0f);
   glm::quat yaw(1.0f, 0.0f, 0.0f, 0.0f);
   glm::vec3 shift(0.0f);
-  float heading = 0.0f;
   std::vector<glm::vec3> positions;
   std::vector<glm::quat> rotations;
   const std::vector<Pose> source = clip.frames;
@@ -55,17 +53,13 @@ std::vector<float> steer_clip(Clip& clip, const BodyMap& body, const std::vector
       const glm::quat turn = glm::angleAxis(step_angle, up);
       yaw = turn * yaw;
       shift = turn * (shift - at) + at;  // the new transform leaves `at` where it was
-      shift.y = 0.0f;
-      heading += step_angle;
     }
     Pose& pose = clip.frames[f];
     const float height = source[f].root_position.y;
     pose.root_position = yaw * source[f].root_position + shift;
     pose.root_position.y = height;
     pose.rotations[0] = yaw * source[f].rotations[0];
-    gained[f] = heading;
   }
-  return gained;
 }
 
 }  // namespace prep

@@ -19,7 +19,6 @@ namespace prep {
 // rotations other than the root's and the root's height are kept; planted feet stay as still as they
 // were in the clip. Turning about the root instead would drag a planted foot by rate x its distance
 // from the root, 10-20 cm over a stance phase at 40 degrees per second.
-// Returns the heading gained at each frame (radians, 0 at frame 0).
-std::vector<float> steer_clip(Clip& clip, const BodyMap& body, const std::vector<FrameContacts>& contacts, float rate);
+void steer_clip(Clip& clip, const BodyMap& body, const std::vector<FrameContacts>& contacts, float rate);
 
 }  // namespace prep
