@@ -172,7 +172,6 @@ void apply_foot_ik(const Skeleton& skeleton, const BodyMap& body, const IkParams
   for (size_t side = 0; side < 2; ++side) {
     const LegChain& leg = body.legs[side];
     FootPlant& plant = plants[side];
-    const bool planted = plant.heel_planted || plant.toe_planted;
     const glm::vec3 goal = target[side];
     const glm::vec3 reached =
         solve_leg(skeleton, leg, params, pose, wp, wr, goal, foot_world[side], forward, body_shift);
