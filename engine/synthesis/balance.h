@@ -156,8 +156,9 @@ struct BalanceResult {
 // the COM passes 5-40 cm from the stance foot's centre; with the bounds off the optimizer follows it
 // with a trunk lean of up to 62 degrees that swings from one foot to the other at every step, the arms
 // flung up to 0.68 m (built-in walk -> duck; 4.9 degrees with the bounds; the test "balance optimizer:
-// the trust region keeps the lean slight ..." in tests/synthesis/preparation_run_test.cpp). The paper's "slight" lean (Fig. 8) comes from
-// stopping after 10 small steps; the trust region makes that explicit and independent of step sizes.
+// the trust region keeps the lean slight ..." in tests/synthesis/preparation_run_test.cpp). The paper's
+// "slight" lean (Fig. 8) comes from stopping after 10 small steps; the trust region makes that explicit
+// and independent of step sizes.
 // The defaults: 6 cm, the head's move in a trunk lean of about 6 degrees; 0.3 m/s, a quarter of the
 // head's own speed in a walk, so the correction never outpaces the motion it corrects.
 //

@@ -172,9 +172,8 @@ void apply_foot_ik(const Skeleton& skeleton, const BodyMap& body, const IkParams
   for (size_t side = 0; side < 2; ++side) {
     const LegChain& leg = body.legs[side];
     FootPlant& plant = plants[side];
-    const glm::vec3 goal = target[side];
     const glm::vec3 reached =
-        solve_leg(skeleton, leg, params, pose, wp, wr, goal, foot_world[side], forward, body_shift);
+        solve_leg(skeleton, leg, params, pose, wp, wr, target[side], foot_world[side], forward, body_shift);
     if (plant.heel_planted && plant.toe_planted) {
       // Flat foot: the toe tip follows the heel along the anchored direction; if the toe joint bent a little
       // the tip moved along it, and the anchor goes with it so a later heel-off pivots about where it is.
