@@ -155,6 +155,28 @@ struct RuntimeParams {
   // Arrival at the source (engine/control/arrival.h): the smoothed alpha at which a character that has
   // come to its launch point is prepared enough to launch the target motion where it stands.
   float launch_alpha = 0.9f;
+  // Beyond the paper, each switchable (off = the paper's behaviour exactly, for comparison):
+  // m: a source of influence calls for preparation when its launch point lies at most this far ahead along
+  // the approach (engine/world/world.h, "in range"). About 3 s of walking at 1.4 m/s: the policy raises
+  // alpha from 0 to its approach level (0.8) in four decisions of a gait cycle each (Eq. 16 makes it climb
+  // a level at a time), about 2.5 m, and the Gaussian filter lags sigma behind.
+  float preparation_range = 4.0f;
+  // Relaxation: with no source in range the controller chooses among its level-0 actions only, so the
+  // smoothed alpha falls to 0 (after the filter's 3 sigma) and stays there while the character stands
+  // at its goal. Nothing in Eq. 14-17 lowers alpha when nothing is near (Eq. 16 only penalises change).
+  bool relax_without_source = true;
+  // Kept preparation (Sec. 7.2 and 8: "the character maintains the preparation style if there are remaining
+  // targets nearby"): coming back from a target motion with the next source in range, the controller
+  // resumes at this level instead of 0. Negative: resume at 0, as the paper's graph edge into plain
+  // locomotion implies.
+  float kept_alpha = 0.8f;
+  // Tight turns: when the goal lies inside the circle the walking turns can reach (closer than their
+  // turning radius allows), the character's heading is turned toward it at up to this rate on top of the
+  // played motion, about the foot it stands on (engine/world/steering.h). 0: off.
+  float tight_turn_deg_per_s = 120.0f;
+  // m: a waypoint that is not the last counts as passed when the character goes by it within this distance
+  // (it falls behind), as well as on entering RewardParams::goal_radius. 0: only the goal radius.
+  float waypoint_pass_radius = 1.0f;
 };
 
 struct Params {

@@ -549,6 +549,7 @@ void World::update_arrival(int index) {
     }
     if (rt.approach_from_far && c.alpha_at_1m < 0.0f && c.to_launch <= 1.0f) c.alpha_at_1m = c.alpha;
   }
+  c.source_in_range = c.has_source && !c.in_target && c.to_launch <= params_.runtime.preparation_range;
   // Without preparation (the naive baseline, set_preparation) synthesis ignores alpha, so nothing would
   // stop the character: it walks on to the launch point and launches there.
   // A character whose policy has itself chosen the top level inside the source radius has stopped there

@@ -159,6 +159,9 @@ struct WorldCharacter {
   float to_launch = 0.0f;
   bool source_ahead = false;
   bool arrived = false;
+  // The source calls for preparation: it lies ahead and its launch point is within
+  // RuntimeParams::preparation_range along the approach. Without one in range the character relaxes.
+  bool source_in_range = false;
   float level_at_arrival = -1.0f;  // for the launch record (LaunchRecord)
   float alpha_at_1m = -1.0f;
 
