@@ -56,6 +56,10 @@ struct ControlInput {
   float heading = 0.0f;  // the character faces (sin h, 0, cos h)
   glm::vec2 goal{0.0f};
   glm::vec2 source{0.0f};
+  // No source calls for preparation (RuntimeParams::relax_without_source): the greedy choice is taken
+  // among the level-0 actions only, and at the goal the kept action drops to level 0. Beyond the paper,
+  // whose Eq. 14-17 never lower alpha when nothing is near.
+  bool relax = false;
 };
 
 struct ControlDecision {
@@ -82,7 +86,7 @@ class Controller {
   void set_arrived(bool arrived);
   bool arrived() const { return arrived_; }
 
-  void reset(int motion, int alpha_level);  // also ends an arrival
+  void reset(int motion, int alpha_level);  // also ends an arrival; the filter restarts at that level
   int motion() const { return motion_; }
   int alpha_level() const { return alpha_level_; }
   float alpha_of_level(int level) const { return states_.alpha_of(level); }
@@ -95,6 +99,7 @@ class Controller {
   std::shared_ptr<const Policy> policy_;
   StateSpace states_;
   ActionSpace actions_;
+  std::uint64_t level0_mask_ = 0;  // the actions at alpha level 0 (relaxed choices)
   AlphaFilter filter_;
   float goal_radius_, source_radius_;
   int motion_ = 0, alpha_level_ = 0;

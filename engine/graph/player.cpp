@@ -20,6 +20,10 @@ int Player::natural_last(const Segment& s) const {
 
 int Player::earliest_exit(const Segment& s) const { return s.first + std::max(1, s.blend); }
 
+void Player::move(const FloorTransform& outer) {
+  for (Segment& s : segments_) s.place = s.place.then(outer);
+}
+
 void Player::start(int node, int frame, FloorTransform place) {
   if (node < 0 || node >= static_cast<int>(graph_->nodes().size()))
     throw std::invalid_argument("player: no motion " + std::to_string(node));

@@ -34,6 +34,9 @@ class Player {
   std::vector<int> available() const;
 
   int current_node() const;
+  // Moves the whole stream (what played, what plays and what is queued) on the floor by `outer`, applied
+  // after each segment's own placement: a steering correction on top of the clips.
+  void move(const FloorTransform& outer);
   // Frames in the stream: through the natural end of the last action (its loop end for a cyclic clip).
   int frame_count() const;
   float fps() const { return fps_; }

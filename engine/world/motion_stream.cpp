@@ -68,6 +68,11 @@ void MotionStream::switch_to(int node, glm::vec2 position, float heading) {
   sample();
 }
 
+void MotionStream::move(const FloorTransform& outer) {
+  player_->move(outer);
+  sample();
+}
+
 std::vector<int> MotionStream::available() const { return player_->available(); }
 
 float MotionStream::queued_start() const {

@@ -39,6 +39,8 @@ class MotionStream {
   // Switches to `node` now, at the frame of its loop that best matches the frame playing (the graph's
   // point-cloud distance over its window), placed where `position`/`heading` say; time restarts at 0.
   void switch_to(int node, glm::vec2 position, float heading);
+  // Moves the stream on the floor (Player::move) and samples the pose again at the current time.
+  void move(const FloorTransform& outer);
   // The motions queue() would accept now.
   std::vector<int> available() const;
   // The last queued motion has begun (or none is pending): time to queue the next.

@@ -19,6 +19,7 @@
 #include "engine/util/files.h"
 #include "engine/world/motion_stream.h"
 #include "engine/world/policy_cache.h"
+#include "engine/world/steering.h"
 
 namespace prep {
 
@@ -49,7 +50,10 @@ float smoothstep(float x) {
 //   the T_p root during the target movement (T_t to one second after it).
 // - Other obstacle clips (a manifest's crawl, duck, jump): the root's position half a second after T_t,
 //   about where the body passes the obstacle.
-glm::vec2 interaction_point(const MotionSet& set, const MotionClip& mc, TargetAction action, int reference_frame) {
+// `peak_frame` (optional) receives the frame where a striking effector reached that point (-1 otherwise).
+glm::vec2 interaction_point(const MotionSet& set, const MotionClip& mc, TargetAction action, int reference_frame,
+                            int* peak_frame = nullptr) {
+  if (peak_frame) *peak_frame = -1;
   if (set.name == "builtin") {
     const library::Obstacle o = library::obstacle_of(mc.clip.name);
     if (o.height > 0.0f) return {0.0f, 0.5f * (o.z_near + o.z_far)};
@@ -91,6 +95,7 @@ glm::vec2 interaction_point(const MotionSet& set, const MotionClip& mc, TargetAc
       if (ahead > best_forward) {
         best_forward = ahead;
         best = floor_xz(p);
+        if (peak_frame) *peak_frame = f;
       }
     }
   }
@@ -98,6 +103,53 @@ glm::vec2 interaction_point(const MotionSet& set, const MotionClip& mc, TargetAc
 }
 
 std::optional<Role> role_of(TargetAction a) { return parse_role(role_name_of(a)); }
+
+// rad/s: the fastest turn among the policy's unprepared actions (steering.h's turning radius).
+float fastest_level0_turn(const ActionTable& table) {
+  float rate = 0.0f;
+  for (int m = 0; m < table.motions; ++m) {
+    const ActionEffect& e = table.at(m * table.alpha_levels);
+    if (e.duration > 0.0f) rate = std::max(rate, std::fabs(e.turn) / e.duration);
+  }
+  return rate;
+}
+
+// Kept preparation's hand-over from a target clip to the walk (world.h).
+constexpr float kKeptFadeSeconds = 0.5f;     // s: the cross-fade from the clip's frame into prepared walking
+constexpr float kReleaseClearance = 0.1f;    // m: every joint this far beyond the obstacle's far side
+constexpr float kReleaseAfterStrike = 0.2f;  // s after a strike's farthest reach (the hand or foot returning)
+constexpr float kRailHalfDepth = 0.05f;      // m: half the depth of an obstacle's rail (scenario objects' 0.1)
+
+// TargetMotion::release_frame. Obstacles (a bar, beam or hurdle is crossed along the T_p facing): the first
+// frame after T_t at which every joint lies beyond the obstacle's far side by kReleaseClearance; the far side
+// is the built-in clip's own obstacle, else the interaction point plus a rail's half depth. Strikes:
+// kReleaseAfterStrike after the effector's farthest reach.
+int release_frame_of(const MotionSet& set, const MotionClip& mc, TargetAction action, int reference_frame,
+                     glm::vec2 interaction, int peak_frame) {
+  const Clip& clip = mc.clip;
+  const int t_t = std::clamp(mc.target_frame, 0, clip.frame_count() - 1);
+  if (action == TargetAction::Kick || action == TargetAction::PunchLeft || action == TargetAction::PunchRight) {
+    if (peak_frame < 0) return -1;
+    const int f = peak_frame + static_cast<int>(std::lround(kReleaseAfterStrike * clip.fps));
+    return f < clip.frame_count() ? f : -1;
+  }
+  const Pose& ref = clip.frames[static_cast<size_t>(reference_frame)];
+  const glm::vec2 origin = floor_xz(ref.root_position);
+  const glm::vec2 fwd = forward_of(heading_of(ref.rotations[0]));
+  float far_side = glm::dot(interaction - origin, fwd) + kRailHalfDepth;
+  if (set.name == "builtin") {
+    const library::Obstacle o = library::obstacle_of(clip.name);
+    if (o.height > 0.0f) far_side = glm::dot(glm::vec2(0.0f, o.z_far) - origin, fwd);
+  }
+  std::vector<glm::vec3> positions;
+  for (int f = t_t; f < clip.frame_count(); ++f) {
+    forward_kinematics(*set.skeleton, clip.frames[static_cast<size_t>(f)], positions);
+    bool beyond = true;
+    for (const glm::vec3& p : positions) beyond = beyond && glm::dot(floor_xz(p) - origin, fwd) > far_side + kReleaseClearance;
+    if (beyond) return f;
+  }
+  return -1;
+}
 
 }  // namespace
 
@@ -147,9 +199,12 @@ WorldAssets make_world_assets(std::shared_ptr<const MotionSet> set, const Params
     t.reference = mc.clip.frames[static_cast<size_t>(t.reference_frame)];
     const glm::vec2 origin = floor_xz(t.reference.root_position);
     const float h = heading_of(t.reference.rotations[0]);
-    const glm::vec2 q = interaction_point(*set, mc, t.action, t.reference_frame) - origin;
+    int peak_frame = -1;
+    const glm::vec2 meets = interaction_point(*set, mc, t.action, t.reference_frame, &peak_frame);
+    const glm::vec2 q = meets - origin;
     t.reach = glm::dot(q, forward_of(h));
     t.lateral = glm::dot(q, left_of(h));
+    t.release_frame = release_frame_of(*set, mc, t.action, t.reference_frame, meets, peak_frame);
   }
   return a;
 }
@@ -177,6 +232,10 @@ struct World::Runtime {
   glm::vec2 source_position{0.0f};
   float source_closing_speed = 0.0f;  // m/s toward the character (> 0 closing in)
   bool approach_seen = false, approach_from_far = false;  // the approach to it began more than 1 m away
+  bool relaxed = false;          // the last decision was taken relaxed (no source in range)
+  bool released = false;         // the target clip playing was left for prepared locomotion
+  float speed = 0.0f;            // m/s over the floor, smoothed over about half a second (steering)
+  float stride_scale = 1.0f;     // the tight turn's stride, following its target (steering.h)
   std::vector<glm::vec3> positions, centroids;
   std::vector<glm::quat> rotations;
 };
@@ -187,6 +246,7 @@ World::World(const Scenario& scenario, std::shared_ptr<const WorldAssets> assets
   if (!policy_) throw std::invalid_argument("world: the assets hold no policy (train or load one first)");
   if (scenario_.user() < 0) throw std::invalid_argument("world: the scenario has no user character");
   arrival_ = std::make_unique<ArrivalModel>(policy_->table, policy_->quantization.alpha_step, params_.runtime);
+  walking_turn_rate_ = fastest_level0_turn(policy_->table);
 
   auto add_character = [&](glm::vec2 position, float heading, Control control, TargetAction met_with, int object) {
     WorldCharacter c;
@@ -239,6 +299,7 @@ void World::set_policy(std::shared_ptr<const Policy> policy) {
   if (!policy) throw std::invalid_argument("world: no policy given");
   policy_ = std::move(policy);
   arrival_ = std::make_unique<ArrivalModel>(policy_->table, policy_->quantization.alpha_step, params_.runtime);
+  walking_turn_rate_ = fastest_level0_turn(policy_->table);
   for (size_t i = 0; i < runtime_.size(); ++i) {
     const int motion = runtime_[i]->controller->motion(), level = runtime_[i]->controller->alpha_level();
     runtime_[i]->controller = std::make_unique<Controller>(policy_, params_);
@@ -393,8 +454,15 @@ void World::control(int index) {
   WorldCharacter& c = characters_[static_cast<size_t>(index)];
   Runtime& rt = *runtime_[static_cast<size_t>(index)];
   Controller& ctl = *rt.controller;
+  // Relaxed when no source is in range (world.h); the last source leaving the range is decided on at once.
+  // The range is taken from this tick's source (choose_source), not the last tick's arrival update.
+  const bool relax = params_.runtime.relax_without_source &&
+                     !(c.has_source && approach(index).to_launch <= params_.runtime.preparation_range);
+  if (relax && !rt.relaxed) rt.next_decision = std::min(rt.next_decision, time_);
   if (time_ >= rt.next_decision && !ctl.arrived()) {
     ControlInput in;
+    in.relax = relax;
+    rt.relaxed = relax;
     in.position = c.position;
     in.heading = c.heading;
     if (c.control == Control::Opponent) in.goal = c.has_source ? c.source : c.position;
@@ -498,6 +566,29 @@ void World::try_auto_launch(int index) {
     c.last_attack = time_;
 }
 
+World::Approach World::approach(int index) const {
+  const WorldCharacter& c = characters_[static_cast<size_t>(index)];
+  Approach a;
+  a.to_launch = std::numeric_limits<float>::infinity();
+  if (!c.has_source) return a;
+  const TargetMotion& t = assets_->target(c.prepared_for);
+  const glm::vec2 fwd = forward_of(c.heading);
+  const glm::vec2 to_object = c.source_object_position - c.position;
+  const float d = glm::length(to_object);
+  if (c.source_object >= 0 && is_across(objects_[static_cast<size_t>(c.source_object)].spec.type)) {
+    // Along the obstacle's normal, from the character's side (as launch_point() places the point).
+    glm::vec2 n = forward_of(objects_[static_cast<size_t>(c.source_object)].spec.heading);
+    if (glm::dot(to_object, n) < 0.0f) n = -n;
+    const float along = glm::dot(to_object, n);
+    a.to_launch = along - t.reach;
+    a.ahead = along > 0.0f && glm::dot(fwd, n) >= kCos45;
+  } else if (d > 1e-4f) {
+    a.to_launch = d - t.reach;
+    a.ahead = glm::dot(to_object, fwd) >= kCos45 * d;
+  }
+  return a;
+}
+
 // Arrival at the launch point (engine/control/arrival.h): how far the character still has to go along the
 // approach, whether the source lies ahead, and the forcing of the played alpha once within the arrival
 // radius. Runs after the tick's pose, so the next tick plays the forced alpha.
@@ -518,21 +609,11 @@ void World::update_arrival(int index) {
   c.to_launch = std::numeric_limits<float>::infinity();
   c.source_ahead = false;
   if (c.has_source && !c.in_target) {
-    const TargetMotion& t = assets_->target(c.prepared_for);
-    const glm::vec2 fwd = forward_of(c.heading);
+    const Approach a = approach(index);
+    c.to_launch = a.to_launch;
+    c.source_ahead = a.ahead;
     const glm::vec2 to_object = c.source_object_position - c.position;
     const float d = glm::length(to_object);
-    if (c.source_object >= 0 && is_across(objects_[static_cast<size_t>(c.source_object)].spec.type)) {
-      // Along the obstacle's normal, from the character's side (as launch_point() places the point).
-      glm::vec2 n = forward_of(objects_[static_cast<size_t>(c.source_object)].spec.heading);
-      if (glm::dot(to_object, n) < 0.0f) n = -n;
-      const float along = glm::dot(to_object, n);
-      c.to_launch = along - t.reach;
-      c.source_ahead = along > 0.0f && glm::dot(fwd, n) >= kCos45;
-    } else if (d > 1e-4f) {
-      c.to_launch = d - t.reach;
-      c.source_ahead = glm::dot(to_object, fwd) >= kCos45 * d;
-    }
     // How fast the source itself comes toward the character (an opponent walking in), smoothed over about
     // a gait cycle (the root sways within one).
     if (d > 1e-4f) {
@@ -570,10 +651,85 @@ void World::update_arrival(int index) {
   if (c.arrived) c.chosen_alpha = 1.0f;
 }
 
+// The level kept between close targets (RuntimeParams::kept_alpha), as the nearest level an action may choose.
+int World::kept_level() const {
+  const int top = action_levels(policy_->quantization) - 1;
+  const float step = policy_->quantization.alpha_step;
+  return std::clamp(static_cast<int>(std::lround(params_.runtime.kept_alpha / step)), 0, top);
+}
+
+bool World::next_source_in_range(int index) const {
+  if (params_.runtime.kept_alpha < 0.0f || !characters_[static_cast<size_t>(index)].has_source) return false;
+  return approach(index).to_launch <= params_.runtime.preparation_range;
+}
+
+// Kept preparation (world.h): once the target movement is over, with the next source in range, the
+// character leaves the clip for the core walk, prepared.
+bool World::release_for_next_source(int index) {
+  WorldCharacter& c = characters_[static_cast<size_t>(index)];
+  Runtime& rt = *runtime_[static_cast<size_t>(index)];
+  const TargetMotion& t = assets_->target(c.playing);
+  if (t.release_frame < 0 || rt.stream.clip_frame() < t.release_frame || !next_source_in_range(index)) return false;
+  const int walk_node = find_cyclic_clip(*assets_->set, Role::Walk);
+  const auto walk = std::find(assets_->core_nodes.begin(), assets_->core_nodes.end(), walk_node);
+  const int motion = walk == assets_->core_nodes.end() ? rt.controller->motion() : static_cast<int>(walk - assets_->core_nodes.begin());
+  c.in_target = false;
+  rt.controller->reset(motion, kept_level());
+  rt.next_decision = time_;
+  rt.fade_from = c.pose;
+  rt.fade_total = rt.fade_left = kKeptFadeSeconds;
+  rt.stream.switch_to(assets_->core_nodes[static_cast<size_t>(motion)], c.position, c.heading);
+  rt.reseed = true;
+  return true;
+}
+
+// Tight turns toward a goal the walking turns cannot reach without circling it (steering.h): the stream
+// is turned about the stance foot and its stride shortened, on top of the clip just advanced.
+void World::steer_tightly(int index) {
+  const WorldCharacter& c = characters_[static_cast<size_t>(index)];
+  Runtime& rt = *runtime_[static_cast<size_t>(index)];
+  const float dt = params_.runtime.fixed_dt;
+  const float max_rate = params_.runtime.tight_turn_deg_per_s * kPi / 180.0f;
+  TightTurn turn;
+  const bool steering = max_rate > 0.0f && c.control == Control::User && !c.goal.empty() && !c.reached_goal &&
+                        !rt.controller->arrived() && !(c.source_in_range && c.source_ahead);  // a source's approach is the policy's
+  if (steering) {
+    const float radius = walking_turn_rate_ > 0.0f ? rt.speed / walking_turn_rate_ : 0.0f;
+    turn = tight_turn(c.position, c.heading, c.goal.front(), radius, max_rate);
+  }
+  rt.stride_scale += dt / (dt + kStrideTime) * (turn.stride - rt.stride_scale);
+  if (rt.reseed) return;  // the stream was just restarted: it has no step of its own yet
+  const glm::vec3 root = rt.stream.pose().root_position;
+  FloorTransform move;
+  // The stride: the clip's step this tick, shortened (the root is moved back by the part not taken).
+  const glm::vec2 step = floor_xz(root) - floor_xz(rt.synthesis_previous_root);
+  move.offset = -(1.0f - rt.stride_scale) * step;
+  if (turn.rate != 0.0f) {
+    const FrameContacts contacts = rt.stream.contacts();
+    const bool left = contacts[kLeft].any(), right = contacts[kRight].any();
+    if (left != right) {  // single support: pivot on the stance foot
+      const MotionSet& set = *assets_->set;
+      forward_kinematics(*set.skeleton, rt.stream.pose(), rt.positions);
+      const glm::vec3 ankle = rt.positions[static_cast<size_t>(set.body.legs[left ? kLeft : kRight].ankle)];
+      const glm::vec2 pivot = floor_xz(ankle) + move.offset;
+      FloorTransform pivoting;
+      pivoting.angle = turn.rate * dt;
+      const glm::vec3 turned = pivoting.apply(glm::vec3(pivot.x, 0.0f, pivot.y));
+      pivoting.offset = pivot - floor_xz(turned);
+      move = move.then(pivoting);
+    }
+  }
+  if (move.angle != 0.0f || glm::length(move.offset) > 0.0f) rt.stream.move(move);
+}
+
 void World::update_goal(int index) {
   WorldCharacter& c = characters_[static_cast<size_t>(index)];
   if (c.control != Control::User) return;
-  while (!c.goal.empty() && glm::length(c.goal.front() - c.position) <= params_.reward.goal_radius) {
+  auto reached = [&](glm::vec2 g) {
+    if (glm::length(g - c.position) <= params_.reward.goal_radius) return true;
+    return c.goal.size() > 1 && passed_waypoint(c.position, c.heading, g, params_.runtime.waypoint_pass_radius);
+  };
+  while (!c.goal.empty() && reached(c.goal.front())) {
     c.goal.erase(c.goal.begin());
     if (c.goal.empty()) {
       c.reached_goal = true;
@@ -609,16 +765,18 @@ void World::step_character(int index) {
   const auto motion_start = StageClock::now();
   stage_times_.control_ms += ms_between(control_start, motion_start);
   rt.stream.advance(dt);
+  if (!c.in_target) steer_tightly(index);
 
   if (c.in_target) {
     const MotionClip& mc = assets_->set->clips[static_cast<size_t>(c.clip)];
     if (rt.stream.node() != c.clip) {
       // Back to locomotion through the graph edge: the controller resumes from the core motion playing, at
-      // alpha 0 (the edge leads into the plain locomotion, world.h).
+      // the kept level when the next source is in range, else at alpha 0 (the edge leads into the plain
+      // locomotion, world.h).
       c.in_target = false;
       const auto core = std::find(assets_->core_nodes.begin(), assets_->core_nodes.end(), rt.stream.node());
       rt.controller->reset(core == assets_->core_nodes.end() ? rt.controller->motion() : static_cast<int>(core - assets_->core_nodes.begin()),
-                           0);
+                           next_source_in_range(index) ? kept_level() : 0);
       rt.next_decision = time_;
       rt.reseed = true;
       rt.fade_from = c.pose;
@@ -631,6 +789,8 @@ void World::step_character(int index) {
       }
       if (rt.target_character >= 0 && characters_[static_cast<size_t>(rt.target_character)].control == Control::Opponent)
         characters_[static_cast<size_t>(rt.target_character)].defeated = true;
+    } else if (rt.struck && release_for_next_source(index)) {
+      // Left for prepared locomotion (world.h, kept preparation).
     } else if (!rt.stream.has_ahead(0.0f)) {
       // The clip ended without an edge back (a set without one): stand where it ended.
       c.in_target = false;
@@ -679,7 +839,9 @@ void World::step_character(int index) {
     rt.fade_left -= dt;
   }
   c.pose = out;
+  const glm::vec2 previous_position = c.position;
   c.position = floor_xz(out.root_position);
+  rt.speed += dt / (dt + 0.5f) * (glm::length(c.position - previous_position) / dt - rt.speed);
   c.heading = heading_of(rt.stream.pose().rotations[0]);
   const auto balance_start = StageClock::now();
   stage_times_.synthesis_ms += ms_between(synthesis_start, balance_start);

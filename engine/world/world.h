@@ -26,8 +26,21 @@
 //   root to the object in the clip) or, arrived, as soon as its smoothed alpha reaches
 //   RuntimeParams::launch_alpha. So alpha_at_launch is what the approach delivered: a character that
 //   comes in fast passes the point before the forcing has raised its alpha.
-// - After a target motion the controller resumes at alpha 0: the clip's graph edge leads into the plain
-//   core locomotion, which is what alpha 0 plays; if the next source is near, the policy prepares again.
+// - Kept preparation (Sec. 7.2 and 8, "the character maintains the preparation style if there are remaining
+//   targets nearby"): when the next source is in range (RuntimeParams::preparation_range) once the target
+//   movement is over (TargetMotion::release_frame), the character leaves the target clip there, before its
+//   get-up or walk-out, for the core walk entered at its best-matching frame and cross-faded over
+//   kKeptFadeSeconds, and the controller resumes at RuntimeParams::kept_alpha with the Gaussian filter
+//   restarted there: the body stays low between two close obstacles and the next launch point, which may lie
+//   inside the previous clip's walk-out, is met by locomotion that can stop on it. A clip whose graph edge
+//   comes first returns through it, at the kept level when the next source is in range.
+// - Otherwise, after a target motion the controller resumes at alpha 0: the clip's graph edge leads into
+//   the plain core locomotion, which is what alpha 0 plays.
+// - Relaxation (RuntimeParams::relax_without_source): with no source in range the controller chooses among
+//   its level-0 actions (controller.h), deciding at once when the last source leaves the range; the
+//   smoothed alpha then falls to 0 within the filter's 3 sigma.
+// - Tight turns and waypoints (steering.h): a goal inside the walking turns' circle is turned toward about
+//   the stance foot; a waypoint other than the last counts as passed when the character goes by it.
 // - No source: the controller is shown one 100 m behind the character, a source it walks away from and
 //   never reaches (beyond the last distance bin, behind), the state in which training learned that
 //   nothing calls for preparation. (One 100 m ahead would share its state with every source beyond the
@@ -74,6 +87,10 @@ struct TargetMotion {
   Pose reference;             // T_p's pose
   float reach = 0.0f;         // m: from the root at T_p, along its facing, to where the clip meets the object
   float lateral = 0.0f;       // m: that point's offset to the left of the facing
+  // The first clip frame at which the target movement is over (the body has passed the obstacle, the
+  // strike has landed): from here the character may leave the clip for prepared locomotion when another
+  // source is near (world.h, "kept preparation"). -1: the clip always plays to its graph edge.
+  int release_frame = -1;
 };
 
 // Everything a world needs that does not depend on the scenario: the motion set, its graph, the
@@ -278,6 +295,17 @@ class World {
   void update_arrival(int index);
   void update_balance(int index);
   glm::vec2 launch_point(int index, glm::vec2 object, float object_heading, bool across, TargetAction action) const;
+  // The approach to the character's source (set by choose_source): the distance still to go to its launch
+  // point along the approach (< 0: past it; infinite without a source) and whether the source lies ahead.
+  struct Approach {
+    float to_launch = 0.0f;
+    bool ahead = false;
+  };
+  Approach approach(int index) const;
+  bool next_source_in_range(int index) const;
+  int kept_level() const;
+  bool release_for_next_source(int index);
+  void steer_tightly(int index);
 
   Scenario scenario_;
   std::shared_ptr<const WorldAssets> assets_;
@@ -298,6 +326,7 @@ class World {
   int picked_source_ = -1;
   StageTimes stage_times_;
   std::unique_ptr<ArrivalModel> arrival_;  // from the policy's table and the runtime Params
+  float walking_turn_rate_ = 0.0f;          // rad/s: the policy's fastest level-0 turn (steering.h)
 };
 
 // A headless run: the scenario for `seconds`, launches and goal (what `prep run` and `prep-demo --json` print).

@@ -1,0 +1,44 @@
+#include "engine/world/steering.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+namespace prep {
+
+namespace {
+constexpr float kPi = 3.14159265358979f;
+}
+
+float bearing_to(glm::vec2 position, float heading, glm::vec2 target) {
+  const glm::vec2 d = target - position;
+  float b = std::atan2(d.x, d.y) - heading;
+  while (b > kPi) b -= 2.0f * kPi;
+  while (b <= -kPi) b += 2.0f * kPi;
+  return b;
+}
+
+bool inside_turning_circle(glm::vec2 position, float heading, glm::vec2 goal, float turning_radius) {
+  const float d = glm::length(goal - position);
+  const float b = bearing_to(position, heading, goal);
+  if (d < 2.0f * turning_radius * std::fabs(std::sin(b))) return true;  // inside the circle on its side
+  return std::fabs(b) > 0.5f * kPi && d < 2.0f * turning_radius;        // behind, within a U-turn's width
+}
+
+TightTurn tight_turn(glm::vec2 position, float heading, glm::vec2 goal, float turning_radius, float max_rate) {
+  TightTurn t;
+  if (max_rate <= 0.0f || !inside_turning_circle(position, heading, goal, turning_radius)) return t;
+  const float b = bearing_to(position, heading, goal);
+  t.rate = std::clamp(b / kTightTurnTime, -max_rate, max_rate);
+  t.stride = std::max(kTightStride, std::cos(std::min(std::fabs(b), 0.5f * kPi)));
+  return t;
+}
+
+bool passed_waypoint(glm::vec2 position, float heading, glm::vec2 waypoint, float pass_radius) {
+  const glm::vec2 d = waypoint - position;
+  if (glm::length(d) > pass_radius) return false;
+  return glm::dot(d, glm::vec2(std::sin(heading), std::cos(heading))) <= 0.0f;
+}
+
+}  // namespace prep

@@ -1,0 +1,50 @@
+// Steering beyond the policy's walking turns: what a person does near a goal that the walking turns cannot
+// reach without circling it, and when a waypoint on the way counts as passed.
+//
+// The policy's core turns curve at a fixed rate (the built-in turns 37.5 deg/s): at 1.4 m/s that is a
+// turning radius of about 2 m. A goal inside the circle of that radius beside the character (closer than
+// 2 R |sin(bearing)|), or behind it within the circle's diameter, cannot be reached by walking turns
+// without a loop around it, and a controller that only sees quantized bearings orbits it. A person
+// shortens the stride and turns sharply there, pivoting on the foot they stand on. So, while the goal is
+// inside that circle, the world moves the character's motion stream on top of the played clip
+// (MotionStream::move):
+// - it turns the stream toward the goal about the stance foot, only in single support (with both feet
+//   down a turn would drag one of them), at the bearing over kTightTurnTime, capped at
+//   RuntimeParams::tight_turn_deg_per_s;
+// - it shortens the stride to cos(bearing) of the clip's, at least kTightStride (a goal to the side or
+//   behind: a third of the stride), as Eq. 3-4 do for preparation: the foot IK keeps the planted feet where
+//   they landed. The scale follows its target over kStrideTime so that entering and leaving the circle do
+//   not jolt the pace.
+// The orbit this prevents: turning at an effective w while moving at v circles with radius v / w; the goal
+// at distance d and bearing b lies on a circle of radius d / (2 sin b). At the cap of 180 deg/s, applied in
+// single support (about 60% of a walk), and a third of 1.4 m/s, the circle is 0.25 m: goals from 0.5 m out
+// at any bearing are reached.
+#pragma once
+
+#include <glm/vec2.hpp>
+
+namespace prep {
+
+constexpr float kTightTurnTime = 0.4f;  // s: the tight turn faces the goal in about this time
+constexpr float kTightStride = 0.3f;    // the shortest stride, as a fraction of the clip's
+constexpr float kStrideTime = 0.2f;     // s: time constant of the stride scale
+
+// Signed bearing (rad, in (-pi, pi], positive toward +X from a heading of 0) of `target` seen from
+// `position` facing `heading` (a character at heading h faces (sin h, cos h) on the floor).
+float bearing_to(glm::vec2 position, float heading, glm::vec2 target);
+
+// Whether walking turns of radius `turning_radius` cannot reach `goal` without circling it (see above).
+bool inside_turning_circle(glm::vec2 position, float heading, glm::vec2 goal, float turning_radius);
+
+struct TightTurn {
+  float rate = 0.0f;    // rad/s of extra heading (the sign of the bearing)
+  float stride = 1.0f;  // target stride scale
+};
+// The tight turn toward `goal`: none (rate 0, stride 1) unless the goal is inside the turning circle.
+TightTurn tight_turn(glm::vec2 position, float heading, glm::vec2 goal, float turning_radius, float max_rate);
+
+// A waypoint the character goes by: within `pass_radius` of it and no longer ahead (it lies behind the
+// line through the character across its facing).
+bool passed_waypoint(glm::vec2 position, float heading, glm::vec2 waypoint, float pass_radius);
+
+}  // namespace prep

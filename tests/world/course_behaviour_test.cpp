@@ -1,0 +1,187 @@
+// Behaviour on courses beyond the shipped scenarios: preparation kept between close targets, relaxed when
+// nothing is ahead, and goals reached without circling (world.h, steering.h).
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "engine/world/policy_cache.h"
+#include "engine/world/steering.h"
+#include "engine/world/world.h"
+#include "tests/support/paths.h"
+
+using namespace prep;
+
+namespace {
+
+constexpr float kPi = 3.14159265358979f;
+
+std::shared_ptr<const WorldAssets> builtin_assets() {
+  static std::shared_ptr<const WorldAssets> assets = [] {
+    const Scenario s = load_scenario(test::repo() + "/assets/scenarios/obstacles.json");
+    return prepare_world_assets(s, load_scenario_params(s), test::tmp_dir() + "/policy-cache");
+  }();
+  return assets;
+}
+
+std::string obstacle(const char* type, float z, float width, float height, float depth) {
+  return std::string("{\"type\": \"") + type + "\", \"position\": [0, " + std::to_string(z) + "], \"size\": [" +
+         std::to_string(width) + ", " + std::to_string(height) + ", " + std::to_string(depth) + "]}";
+}
+
+Scenario course(const std::vector<std::string>& objects, float goal_z) {
+  std::string list;
+  for (const std::string& o : objects) list += (list.empty() ? "" : ", ") + o;
+  const std::string text = "{\"auto\": true, \"characters\": [{\"position\": [0, 0], \"control\": \"user\"}], \"objects\": [" +
+                           list + "], \"goal\": [0, " + std::to_string(goal_z) + "]}";
+  return parse_scenario(text, "course");
+}
+
+// The user's smoothed alpha per tick with the world time, until `seconds` have passed.
+struct Trace {
+  std::vector<float> time, alpha;
+  float min_between(float from, float to) const {
+    float m = 1.0f;
+    for (size_t k = 0; k < time.size(); ++k)
+      if (time[k] > from && time[k] < to) m = std::min(m, alpha[k]);
+    return m;
+  }
+};
+
+Trace run(World& world, float seconds) {
+  Trace t;
+  const int ticks = static_cast<int>(std::lround(seconds / world.params().runtime.fixed_dt));
+  for (int k = 0; k < ticks; ++k) {
+    world.step();
+    t.time.push_back(world.time());
+    t.alpha.push_back(world.characters()[static_cast<size_t>(world.user())].alpha);
+  }
+  return t;
+}
+
+const LaunchRecord* launch_of(const World& world, TargetAction action) {
+  for (const LaunchRecord& r : world.launches())
+    if (r.character == world.user() && r.action == action) return &r;
+  return nullptr;
+}
+
+}  // namespace
+
+TEST_CASE("kept preparation: between a bar and a beam 2 m apart alpha stays at or above 0.5") {
+  const Scenario s = course({obstacle("bar", 3.5f, 4.0f, 0.7f, 0.1f), obstacle("beam", 5.5f, 4.0f, 1.2f, 0.2f)}, 9.0f);
+  World world(s, builtin_assets());
+  const Trace t = run(world, 30.0f);
+  INFO(summary_text(summarize(world)));
+  const LaunchRecord* crawl = launch_of(world, TargetAction::Crawl);
+  const LaunchRecord* duck = launch_of(world, TargetAction::Duck);
+  REQUIRE(crawl != nullptr);
+  REQUIRE(duck != nullptr);
+  CHECK(crawl->alpha_at_launch >= 0.85f);
+  CHECK(duck->alpha_at_launch >= 0.85f);
+  CHECK(t.min_between(crawl->time, duck->time) >= 0.5f);
+  CHECK(world.goal_reached());
+}
+
+TEST_CASE("kept preparation: a hurdle 1.5 m behind a beam is jumped prepared") {
+  const Scenario s = course({obstacle("beam", 6.0f, 4.0f, 1.2f, 0.2f), obstacle("hurdle", 7.5f, 4.0f, 0.45f, 0.1f)}, 10.0f);
+  World world(s, builtin_assets());
+  const Trace t = run(world, 30.0f);
+  INFO(summary_text(summarize(world)));
+  const LaunchRecord* duck = launch_of(world, TargetAction::Duck);
+  const LaunchRecord* jump = launch_of(world, TargetAction::Jump);
+  REQUIRE(duck != nullptr);
+  REQUIRE(jump != nullptr);
+  CHECK(jump->alpha_at_launch >= 0.85f);
+  // 1 m before the launch point: met on the approach, or (the approach began closer, out of the duck) the
+  // alpha never fell below 0.5 on the way from the duck.
+  if (jump->alpha_at_1m >= 0.0f) CHECK(jump->alpha_at_1m >= 0.5f);
+  CHECK(t.min_between(duck->time, jump->time) >= 0.5f);
+  CHECK(world.goal_reached());
+}
+
+TEST_CASE("relaxation: with no source in range alpha falls to 0.1 within 2 s and stays there at the goal") {
+  const Scenario s = course({obstacle("bar", 3.5f, 4.0f, 0.7f, 0.1f)}, 12.0f);
+  World world(s, builtin_assets());
+  float back = -1.0f, relaxed = -1.0f, goal = -1.0f, worst_after_goal = 0.0f;
+  bool was_in_target = false;
+  for (int k = 0; k < 40 * 60 && (goal < 0.0f || world.time() < goal + 4.0f); ++k) {
+    world.step();
+    const WorldCharacter& u = world.characters()[static_cast<size_t>(world.user())];
+    if (was_in_target && !u.in_target && back < 0.0f) back = world.time();
+    was_in_target = u.in_target;
+    if (back >= 0.0f && relaxed < 0.0f && u.alpha <= 0.1f) relaxed = world.time();
+    if (goal < 0.0f && u.reached_goal) goal = world.time();
+    if (goal >= 0.0f && world.time() >= goal + 2.0f) worst_after_goal = std::max(worst_after_goal, u.alpha);
+  }
+  INFO(summary_text(summarize(world)));
+  REQUIRE(back > 0.0f);
+  REQUIRE(relaxed > 0.0f);
+  CHECK(relaxed - back <= 2.0f);
+  REQUIRE(goal > 0.0f);
+  CHECK(worst_after_goal <= 0.1f);
+}
+
+TEST_CASE("the switches off restore the paper's behaviour: at the goal the last chosen level stays") {
+  Params paper = builtin_assets()->params;
+  paper.runtime.relax_without_source = false;
+  paper.runtime.kept_alpha = -1.0f;
+  paper.runtime.tight_turn_deg_per_s = 0.0f;
+  paper.runtime.waypoint_pass_radius = 0.0f;
+  const Scenario s = load_scenario(test::repo() + "/assets/scenarios/obstacles.json");
+  World relaxed(s, builtin_assets()), as_paper(s, builtin_assets());
+  as_paper.set_params(paper);
+  relaxed.run(32.0f);
+  as_paper.run(32.0f);
+  REQUIRE(relaxed.goal_reached());
+  REQUIRE(as_paper.goal_reached());
+  // Eq. 14-17 never lower alpha when nothing is near, and at the goal the controller keeps its last action
+  // (controller.h): the paper's character stands there part prepared; the relaxed one stands upright.
+  CHECK(as_paper.characters()[0].alpha > 0.1f);
+  CHECK(as_paper.characters()[0].alpha == doctest::Approx(as_paper.characters()[0].chosen_alpha));
+  CHECK(relaxed.characters()[0].alpha <= 0.1f);
+}
+
+TEST_CASE("steering: the turning circle and waypoints passed by") {
+  // A goal 1 m to the left, radius 2 m: inside the circle on the left; 5 m ahead: not.
+  CHECK(inside_turning_circle({0, 0}, 0.0f, {1.0f, 0.0f}, 2.0f));
+  CHECK_FALSE(inside_turning_circle({0, 0}, 0.0f, {0.0f, 5.0f}, 2.0f));
+  CHECK(inside_turning_circle({0, 0}, 0.0f, {0.0f, -1.5f}, 2.0f));  // behind within a U-turn's width
+  CHECK(bearing_to({0, 0}, 0.0f, {1.0f, 0.0f}) == doctest::Approx(kPi / 2));  // +X is to the left of +Z
+  CHECK(tight_turn({0, 0}, 0.0f, {1.0f, 0.0f}, 2.0f, 2.0f).rate == doctest::Approx(2.0f));  // capped
+  CHECK(tight_turn({0, 0}, 0.0f, {0.0f, 5.0f}, 2.0f, 2.0f).rate == 0.0f);
+  CHECK(passed_waypoint({0, 0}, 0.0f, {0.5f, -0.1f}, 1.0f));
+  CHECK_FALSE(passed_waypoint({0, 0}, 0.0f, {0.5f, 0.3f}, 1.0f));  // still ahead
+  CHECK_FALSE(passed_waypoint({0, 0}, 0.0f, {0.0f, -1.5f}, 1.0f));  // too far
+}
+
+TEST_CASE("goals 0.5-2 m to the side and behind a walking character are reached without a full circle") {
+  const Scenario s = course({}, 40.0f);
+  for (float distance : {0.5f, 1.0f, 2.0f}) {
+    for (float bearing_deg : {90.0f, -90.0f, 135.0f, 180.0f, -135.0f}) {
+      World world(s, builtin_assets());
+      world.run(4.0f);  // walking toward the far goal
+      const WorldCharacter& u = world.characters()[0];
+      const float b = u.heading + bearing_deg * kPi / 180.0f;
+      world.set_goal(u.position + distance * glm::vec2(std::sin(b), std::cos(b)));
+      float turned = 0.0f, heading = u.heading;
+      float reached = -1.0f;
+      for (int k = 0; k < 12 * 60 && reached < 0.0f; ++k) {
+        world.step();
+        float dh = world.characters()[0].heading - heading;
+        while (dh > kPi) dh -= 2.0f * kPi;
+        while (dh < -kPi) dh += 2.0f * kPi;
+        turned += std::fabs(dh);
+        heading = world.characters()[0].heading;
+        if (world.goal_reached()) reached = world.time() - 4.0f;
+      }
+      INFO("goal " << distance << " m at " << bearing_deg << " deg: reached after " << reached << " s, turned "
+                   << turned * 180.0f / kPi << " deg");
+      CHECK(reached > 0.0f);
+      CHECK(reached < 8.0f);
+      CHECK(turned < 2.0f * kPi);
+    }
+  }
+}
