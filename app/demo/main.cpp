@@ -87,10 +87,15 @@ int main(int argc, char** argv) {
   float unit_scale = 0.01f, time = 0.0f, seconds = 30.0f;
   int frames = 8, width = 0, height = 0, bench_frames = 0, screenshot_after = 60, quit_after = -1;
   int shadow_map = render::RenderSettings{}.shadow_map_size;
-  bool no_panels = false, no_props = false, no_vsync = false, json = false, capsules = false;
+  bool no_panels = false, no_props = false, no_vsync = false, json = false, capsules = false, until_goal = false;
   cli.add_flag("--headless", headless, "Render off-screen through OSMesa (no display needed)");
   cli.add_option("--scenario", scenario, "Scenario JSON (default: assets/scenarios/obstacles.json)");
-  cli.add_option("--seconds", seconds, "Headless scenario: simulated seconds")->capture_default_str();
+  // The last --seconds counts: scripts/demo.sh gives one ahead of the user's arguments.
+  cli.add_option("--seconds", seconds, "Headless scenario: simulated seconds (with --until-goal the most)")
+      ->capture_default_str()
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  cli.add_flag("--until-goal", until_goal,
+               "Headless scenario: end a second after the user's goal is reached and no target motion plays");
   cli.add_option("--params", params_file, "Params JSON (default: the scenario's, or the built-in defaults)");
   cli.add_option("--screenshot", screenshot, "Write one frame (panels included) to this PNG: headless the last one");
   cli.add_option("--frames-dir", frames_dir, "Headless scenario: a PNG per frame (30 frames/s) into this folder");
@@ -140,6 +145,7 @@ int main(int argc, char** argv) {
       ScenarioRunOptions o;
       o.scenario = scenario;
       o.seconds = seconds;
+      o.until_goal = until_goal;
       o.width = w.width;
       o.height = w.height;
       o.screenshot = screenshot;
@@ -151,10 +157,11 @@ int main(int argc, char** argv) {
       o.panels = !no_panels;
       o.bench_frames = bench_frames;
       o.render = render;
-      return run_scenario_headless(o);
+      run_scenario_headless(o);  // whether the goal was reached is in what it prints
+      return 0;
     }
-    if (!frames_dir.empty() || !video.empty() || !strip.empty() || json || bench_frames > 0)
-      throw std::runtime_error("--frames-dir, --video, --strip, --json and --bench-frames need --headless");
+    if (!frames_dir.empty() || !video.empty() || !strip.empty() || json || bench_frames > 0 || until_goal)
+      throw std::runtime_error("--frames-dir, --video, --strip, --json, --until-goal and --bench-frames need --headless");
     try {
       run_demo_window(scenario, params_file.empty() ? std::nullopt : std::optional<Params>(load_params(params_file)), w);
     } catch (const render::NoDisplayError& e) {
