@@ -80,7 +80,7 @@ int clip_viewer(bool headless, const std::string& motions_arg, const std::string
 int main(int argc, char** argv) {
   CLI::App cli{"prep-demo: characters that prepare for what comes next (Shum et al. 2013).\n"
                "Opens a window on a scenario (default: the obstacle course); --headless renders through OSMesa.\n"
-               "In the window: WASD/arrows move the goal, 1-6 or Space or a right-click launch target motions,\n"
+               "In the window: WASD/arrows held steer the character, 1-6 or Space or a right-click launch target motions,\n"
                "a left click sets the goal (floor) or the source of influence (an object), T toggles auto."};
   bool headless = false, viewer = false;
   std::string scenario, motions_arg = "builtin", bvh, clip_name, strip, screenshot, params_file, script, frames_dir, video;
@@ -108,7 +108,8 @@ int main(int argc, char** argv) {
   cli.add_option("--shadow-map", shadow_map, "Shadow map size in texels (0: no shadows)")->capture_default_str();
   cli.add_flag("--capsules", capsules, "Draw the characters as capsules per bone instead of the skinned body");
   cli.add_flag("--no-panels", no_panels, "Do not draw the ImGui panels");
-  cli.add_option("--script", script, "Window: scripted key presses FRAME:KEY,... (e.g. 20:w,40:space)");
+  cli.add_option("--script", script,
+                 "Window: scripted keys FRAME:KEY (a press) or FROM-TO:KEY (held), comma-separated (e.g. 20:e,40-100:w)");
   cli.add_option("--screenshot-after", screenshot_after, "Window: frame after which --screenshot is taken (-1: on closing, e.g. Escape)")->capture_default_str();
   cli.add_option("--quit-after", quit_after, "Window: close after this many frames");
   cli.add_flag("--no-vsync", no_vsync, "Window: do not wait for the display's refresh");
