@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 
 #include "app/demo/picking.h"
 #include "app/render/gl_api.h"
@@ -113,6 +114,7 @@ glm::vec2 DemoApp::look_point() const {
 }
 
 void DemoApp::skip_frame(float dt) {
+  session_.steer(steer_direction());
   session_.advance(dt);
   update_camera(dt);
 }
@@ -153,6 +155,7 @@ void DemoApp::frame(float dt) {
   };
 
   auto t = Clock::now();
+  session_.steer(steer_direction());
   const int ticks = session_.advance(dt);
   const World::StageTimes& st = session_.stage_times();
   engine_timings.control.add(st.control_ms);
@@ -313,18 +316,48 @@ void DemoApp::open_scenario(const std::string& path) {
   }
 }
 
-void DemoApp::on_key(int key) {
-  const float step = 0.15f;
-  const glm::vec2 f = camera_forward(), right(-f.y, f.x);
+namespace {
+// A steering key's direction relative to the camera: (forward, right).
+std::optional<glm::vec2> steer_key(int key) {
   switch (key) {
     case GLFW_KEY_W:
-    case GLFW_KEY_UP: session_.move_goal(kGoalStep * f); break;
+    case GLFW_KEY_UP: return glm::vec2(1.0f, 0.0f);
     case GLFW_KEY_S:
-    case GLFW_KEY_DOWN: session_.move_goal(-kGoalStep * f); break;
+    case GLFW_KEY_DOWN: return glm::vec2(-1.0f, 0.0f);
     case GLFW_KEY_D:
-    case GLFW_KEY_RIGHT: session_.move_goal(kGoalStep * right); break;
+    case GLFW_KEY_RIGHT: return glm::vec2(0.0f, 1.0f);
     case GLFW_KEY_A:
-    case GLFW_KEY_LEFT: session_.move_goal(-kGoalStep * right); break;
+    case GLFW_KEY_LEFT: return glm::vec2(0.0f, -1.0f);
+    default: return std::nullopt;
+  }
+}
+}  // namespace
+
+void DemoApp::on_key_state(int key, bool down) {
+  if (!steer_key(key)) return;
+  if (down) steer_keys_.insert(key);
+  else steer_keys_.erase(key);
+}
+
+glm::vec2 DemoApp::steer_direction() const {
+  // (forward, right) of the keys held; a key and its arrow held together count once, opposite keys cancel.
+  bool forward = false, back = false, left = false, right = false;
+  for (int key : steer_keys_) {
+    const glm::vec2 d = *steer_key(key);
+    forward = forward || d.x > 0.0f;
+    back = back || d.x < 0.0f;
+    right = right || d.y > 0.0f;
+    left = left || d.y < 0.0f;
+  }
+  const float along = static_cast<float>(forward) - static_cast<float>(back);
+  const float across = static_cast<float>(right) - static_cast<float>(left);
+  const glm::vec2 f = camera_forward(), r(-f.y, f.x);
+  return along * f + across * r;  // WorldSession::steer normalizes a diagonal
+}
+
+void DemoApp::on_key(int key) {
+  const float step = 0.15f;
+  switch (key) {
     case GLFW_KEY_1:
     case GLFW_KEY_2:
     case GLFW_KEY_3:
@@ -392,11 +425,13 @@ void DemoApp::on_click(glm::vec2 pixel, bool right) {
 
 std::string DemoApp::closing_report() const {
   const glm::vec2 g = session_.goal();
-  char text[256];
+  char text[320];
   const World* w = session_.world();
-  std::snprintf(text, sizeof text, "scenario %s, %s, t = %.2f s, goal %.2f %.2f -> %.2f %.2f, %d launches, auto %s",
+  const glm::vec2 user = w ? w->characters()[static_cast<size_t>(w->user())].position : glm::vec2(0.0f);
+  std::snprintf(text, sizeof text,
+                "scenario %s, %s, t = %.2f s, goal %.2f %.2f -> %.2f %.2f, user at %.2f %.2f, %d launches, auto %s",
                 session_.scenario().name.c_str(), phase_name(session_.phase()), w ? w->time() : 0.0f, initial_goal_.x,
-                initial_goal_.y, g.x, g.y, w ? static_cast<int>(w->launches().size()) : 0,
+                initial_goal_.y, g.x, g.y, user.x, user.y, w ? static_cast<int>(w->launches().size()) : 0,
                 session_.auto_launch() ? "on" : "off");
   return text;
 }

@@ -1,17 +1,22 @@
 // The demo (Sec. 7): a scenario's world (WorldSession: fixed-step engine, background training) drawn by the
 // renderer with the balance overlay and the ImGui panels of app/ui, and the input that drives it: keys
-// move the goal and launch target motions, a left click on the floor sets the goal and on an object makes
-// it the source of influence, a right click launches the action the source calls for. The same class
-// runs in the GLFW window and headless through OSMesa (screenshots, videos, benchmarks).
+// steer the user's character and launch target motions, a left click on the floor sets the goal and on an
+// object makes it the source of influence, a right click launches the action the source calls for. The
+// same class runs in the GLFW window and headless through OSMesa (screenshots, videos, benchmarks).
 //
-// Keys: W A S D / arrows move the goal 1 m (relative to the camera: W away from it); 1-6 launch kick,
-// crawl, duck, jump, punch_left, punch_right; Space launches the prepared action; T toggles auto; P
-// pauses; . steps one tick while paused; N restarts; B toggles the support polygon and COM; H hides the
-// panels; Q/E orbit, R/F tilt, Z/X zoom, C follow; Escape quits.
+// Keys: W A S D / arrows held steer as in a game (WorldSession::steer: the goal leads the character in
+// the keys' direction; two keys: a diagonal; let go: it stops close by). The direction is relative to the
+// camera's view on the floor -- W away from the camera, D to its right -- taken anew each frame: the
+// followed camera slides along without turning, so a held key walks a straight line, and after an orbit
+// W is again "into the screen". 1-6 launch kick, crawl, duck, jump, punch_left, punch_right; Space
+// launches the prepared action; T toggles auto; P pauses; . steps one tick while paused; N restarts; B
+// toggles the support polygon and COM; H hides the panels; Q/E orbit, R/F tilt, Z/X zoom, C follow;
+// Escape quits.
 #pragma once
 
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -46,7 +51,6 @@ struct EngineTimings {
 
 class DemoApp final : public WindowApp {
  public:
-  static constexpr float kGoalStep = 1.0f;        // m per key press
   static constexpr float kLookAhead = 1.2f;       // m ahead of the character the followed camera aims at ...
   static constexpr float kSourceShare = 0.25f;     // ... or this share of the way to its source of influence,
   static constexpr float kMaxLookAhead = 1.8f;    // at most this far (m)
@@ -60,6 +64,7 @@ class DemoApp final : public WindowApp {
   // the camera follows as in a drawn frame.
   void skip_frame(float dt);
   void on_key(int key) override;
+  void on_key_state(int key, bool down) override;  // W A S D / arrows: steering while held
   void on_drag(float dx, float dy, bool pan) override;
   void on_scroll(float steps) override;
   void on_click(glm::vec2 pixel, bool right) override;
@@ -96,6 +101,8 @@ class DemoApp final : public WindowApp {
   void update_camera(float dt);
   void draw_panels();
   glm::vec2 camera_forward() const;  // unit, on the floor
+  // The direction the held steering keys ask for, on the floor (relative to the camera; zero: none).
+  glm::vec2 steer_direction() const;
   glm::vec2 look_point() const;      // where the followed camera aims, on the floor
   // The panels' pixels, kept between their redraws (demo_app.cpp, the panels stage).
   struct PanelCache {
@@ -126,6 +133,7 @@ class DemoApp final : public WindowApp {
   bool camera_placed_ = false;  // reset_camera() ran for the world now running
   const World* camera_world_ = nullptr;
   glm::vec2 initial_goal_{0.0f};
+  std::set<int> steer_keys_;  // the steering keys held (GLFW key codes)
 };
 
 }  // namespace prep::demo

@@ -80,17 +80,22 @@ int clip_viewer(bool headless, const std::string& motions_arg, const std::string
 int main(int argc, char** argv) {
   CLI::App cli{"prep-demo: characters that prepare for what comes next (Shum et al. 2013).\n"
                "Opens a window on a scenario (default: the obstacle course); --headless renders through OSMesa.\n"
-               "In the window: WASD/arrows move the goal, 1-6 or Space or a right-click launch target motions,\n"
+               "In the window: WASD/arrows held steer the character, 1-6 or Space or a right-click launch target motions,\n"
                "a left click sets the goal (floor) or the source of influence (an object), T toggles auto."};
   bool headless = false, viewer = false;
   std::string scenario, motions_arg = "builtin", bvh, clip_name, strip, screenshot, params_file, script, frames_dir, video;
   float unit_scale = 0.01f, time = 0.0f, seconds = 30.0f;
   int frames = 8, width = 0, height = 0, bench_frames = 0, screenshot_after = 60, quit_after = -1;
   int shadow_map = render::RenderSettings{}.shadow_map_size;
-  bool no_panels = false, no_props = false, no_vsync = false, json = false, capsules = false;
+  bool no_panels = false, no_props = false, no_vsync = false, json = false, capsules = false, until_goal = false;
   cli.add_flag("--headless", headless, "Render off-screen through OSMesa (no display needed)");
   cli.add_option("--scenario", scenario, "Scenario JSON (default: assets/scenarios/obstacles.json)");
-  cli.add_option("--seconds", seconds, "Headless scenario: simulated seconds")->capture_default_str();
+  // The last --seconds counts: scripts/demo.sh gives one ahead of the user's arguments.
+  cli.add_option("--seconds", seconds, "Headless scenario: simulated seconds (with --until-goal the most)")
+      ->capture_default_str()
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  cli.add_flag("--until-goal", until_goal,
+               "Headless scenario: end a second after the user's goal is reached and no target motion plays");
   cli.add_option("--params", params_file, "Params JSON (default: the scenario's, or the built-in defaults)");
   cli.add_option("--screenshot", screenshot, "Write one frame (panels included) to this PNG: headless the last one");
   cli.add_option("--frames-dir", frames_dir, "Headless scenario: a PNG per frame (30 frames/s) into this folder");
@@ -103,7 +108,8 @@ int main(int argc, char** argv) {
   cli.add_option("--shadow-map", shadow_map, "Shadow map size in texels (0: no shadows)")->capture_default_str();
   cli.add_flag("--capsules", capsules, "Draw the characters as capsules per bone instead of the skinned body");
   cli.add_flag("--no-panels", no_panels, "Do not draw the ImGui panels");
-  cli.add_option("--script", script, "Window: scripted key presses FRAME:KEY,... (e.g. 20:w,40:space)");
+  cli.add_option("--script", script,
+                 "Window: scripted keys FRAME:KEY (a press) or FROM-TO:KEY (held), comma-separated (e.g. 20:e,40-100:w)");
   cli.add_option("--screenshot-after", screenshot_after, "Window: frame after which --screenshot is taken (-1: on closing, e.g. Escape)")->capture_default_str();
   cli.add_option("--quit-after", quit_after, "Window: close after this many frames");
   cli.add_flag("--no-vsync", no_vsync, "Window: do not wait for the display's refresh");
@@ -140,6 +146,7 @@ int main(int argc, char** argv) {
       ScenarioRunOptions o;
       o.scenario = scenario;
       o.seconds = seconds;
+      o.until_goal = until_goal;
       o.width = w.width;
       o.height = w.height;
       o.screenshot = screenshot;
@@ -151,10 +158,11 @@ int main(int argc, char** argv) {
       o.panels = !no_panels;
       o.bench_frames = bench_frames;
       o.render = render;
-      return run_scenario_headless(o);
+      run_scenario_headless(o);  // whether the goal was reached is in what it prints
+      return 0;
     }
-    if (!frames_dir.empty() || !video.empty() || !strip.empty() || json || bench_frames > 0)
-      throw std::runtime_error("--frames-dir, --video, --strip, --json and --bench-frames need --headless");
+    if (!frames_dir.empty() || !video.empty() || !strip.empty() || json || bench_frames > 0 || until_goal)
+      throw std::runtime_error("--frames-dir, --video, --strip, --json, --until-goal and --bench-frames need --headless");
     try {
       run_demo_window(scenario, params_file.empty() ? std::nullopt : std::optional<Params>(load_params(params_file)), w);
     } catch (const render::NoDisplayError& e) {

@@ -98,7 +98,35 @@ std::function<void(const std::string&, float)> progress_printer() {
 
 }  // namespace
 
-int run_scenario_headless(const ScenarioRunOptions& o) {
+int run_frames(WorldSession& session, float seconds, bool until_goal) {
+  const int most = std::max(1, static_cast<int>(std::lround(seconds * kVideoFps)));
+  if (!until_goal || !session.world()) return most;
+  const int tail = static_cast<int>(std::lround(kGoalTail * kVideoFps));
+  int done_since = -1;  // the frame from which the course has been done, or -1
+  for (int f = 0; f < most; ++f) {
+    session.advance(1.0 / kVideoFps);
+    const World& w = *session.world();
+    bool playing = false;
+    for (const WorldCharacter& c : w.characters()) playing = playing || c.in_target;
+    if (!w.goal_reached() || playing) {
+      done_since = -1;
+      continue;
+    }
+    if (done_since < 0) done_since = f;
+    if (f - done_since >= tail) return f + 1;
+  }
+  return most;
+}
+
+std::vector<int> strip_frames(int frames) {
+  const int last = std::max(frames, 1) - 1;
+  const int first = std::min(kVideoFps, last / kStripTiles);
+  std::vector<int> out;
+  for (int k = 0; k < kStripTiles; ++k) out.push_back(first + (last - first) * k / (kStripTiles - 1));
+  return out;
+}
+
+ScenarioRunResult run_scenario_headless(const ScenarioRunOptions& o) {
   if (!(o.seconds > 0.0f)) throw std::invalid_argument("--seconds must be positive");
   SessionOptions so;
   so.cache_dir = o.cache_dir;
@@ -117,8 +145,11 @@ int run_scenario_headless(const ScenarioRunOptions& o) {
               << app.engine_timings.motion.value() << "  synthesis " << app.engine_timings.synthesis.value()
               << "  balance " << app.engine_timings.balance.value() << "  total " << app.engine_timings.total.value()
               << "  (" << app.engine_timings.ticks.value() << " ticks per frame)\n";
-    return 0;
+    return {};
   }
+  ScenarioRunResult result;
+  result.frames = run_frames(session, o.seconds, o.until_goal);
+  if (o.until_goal) session.restart();  // the run to draw: the same world from its start, to that frame
 
   std::string video = o.video, strip = o.strip;
   if (!video.empty() && !ffmpeg_available()) {
@@ -140,18 +171,23 @@ int run_scenario_headless(const ScenarioRunOptions& o) {
     if (!video.empty()) writer = std::make_unique<VideoWriter>(video, o.width, o.height);
   }
 
-  const int frames = std::max(1, static_cast<int>(std::lround(o.seconds * kVideoFps)));
+  const int frames = result.frames;
   const float dt = 1.0f / kVideoFps;
-  // The strip's frames: spread over the run, the first a second in (the character has started moving).
-  std::vector<int> strip_frames;
-  for (int k = 0; k < kStripTiles && !strip.empty(); ++k)
-    strip_frames.push_back(std::min(frames - 1, kVideoFps + (frames - 1 - kVideoFps) * k / (kStripTiles - 1)));
+  if (o.until_goal && !o.json) {
+    char line[160];
+    if (frames < std::lround(o.seconds * kVideoFps))
+      std::snprintf(line, sizeof line, "the course is done (goal reached, nothing playing): the run ends at %.1f s", frames * dt);
+    else
+      std::snprintf(line, sizeof line, "the course is not done within --seconds %.1f: the run ends there", o.seconds);
+    std::cout << "prep-demo: " << line << "\n";
+  }
+  const std::vector<int> strip_at = strip.empty() ? std::vector<int>() : strip_frames(frames);
   const int strip_factor = 3;
   render::Image strip_image;
   if (!strip.empty()) strip_image = render::Image(kStripColumns * (o.width / strip_factor), kStripRows * (o.height / strip_factor));
   int tile = 0, written = 0;
   for (int f = 0; f < frames; ++f) {
-    const bool strip_frame = tile < static_cast<int>(strip_frames.size()) && strip_frames[static_cast<size_t>(tile)] == f;
+    const bool strip_frame = tile < static_cast<int>(strip_at.size()) && strip_at[static_cast<size_t>(tile)] == f;
     // The screenshot's last frames are drawn (two seconds of them: the panels' timings settle).
     const bool screenshot_frame = !o.screenshot.empty() && f >= frames - kScreenshotLeadFrames;
     const bool every_frame = !o.frames_dir.empty() || writer;
@@ -175,11 +211,14 @@ int run_scenario_headless(const ScenarioRunOptions& o) {
       app->view.caption.clear();
       app->view.show_panels = panels;
       const render::Image small = downscale(context->read_pixels(), strip_factor);
-      const int x0 = (tile % kStripColumns) * small.width, y0 = (tile / kStripColumns) * small.height;
-      for (int y = 0; y < small.height; ++y)
-        for (int x = 0; x < small.width; ++x)
-          for (int c = 0; c < 4; ++c) strip_image.pixel(x0 + x, y0 + y)[c] = small.pixel(x, y)[c];
-      ++tile;
+      // Every tile of this frame (a run shorter than the strip shows a frame in several).
+      for (; tile < static_cast<int>(strip_at.size()) && strip_at[static_cast<size_t>(tile)] == f; ++tile) {
+        result.strip_times.push_back(w->time());
+        const int x0 = (tile % kStripColumns) * small.width, y0 = (tile / kStripColumns) * small.height;
+        for (int y = 0; y < small.height; ++y)
+          for (int x = 0; x < small.width; ++x)
+            for (int c = 0; c < 4; ++c) strip_image.pixel(x0 + x, y0 + y)[c] = small.pixel(x, y)[c];
+      }
       if (!every_frame && !screenshot_frame) continue;
       app->frame(0.0f);  // the same instant again, as the other frames show it (panels, no caption)
     } else {
@@ -208,12 +247,14 @@ int run_scenario_headless(const ScenarioRunOptions& o) {
   }
   if (!o.frames_dir.empty() && !o.json) std::cout << "prep-demo: wrote " << written << " frames into " << o.frames_dir << "\n";
   const World& world = *session.world();
-  const RunSummary summary = summarize(world);
+  result.seconds = world.time();
+  result.frames_written = written;
+  result.summary = summarize(world);
   if (o.json)
-    std::cout << summary_json(summary, world) << "\n";
+    std::cout << summary_json(result.summary, world) << "\n";
   else
-    std::cout << summary_text(summary);
-  return 0;
+    std::cout << summary_text(result.summary);
+  return result;
 }
 
 }  // namespace prep::demo

@@ -16,8 +16,11 @@ class WindowApp {
 
   // One frame of dt seconds into the context's framebuffer (the caller ends the frame).
   virtual void frame(float dt) = 0;
-  // A key press (GLFW key codes), from the window or from a --script.
+  // A key press (GLFW key codes; a held key repeats), from the window or from a --script.
   virtual void on_key(int key) = 0;
+  // A key went down or came up (the press and the release only, no repeats): what is held, for input
+  // that lasts while a key is held (the demo's steering).
+  virtual void on_key_state(int key, bool down) { (void)key, (void)down; }
   // Mouse input already filtered by ImGui's capture: drag in pixels, scroll in steps, a click (press and
   // release without a drag) at a framebuffer pixel (x right, y down).
   virtual void on_drag(float dx, float dy, bool pan) = 0;

@@ -27,12 +27,19 @@ std::vector<ScriptedKey> parse_key_script(const std::string& text) {
     const size_t colon = item.find(':');
     if (colon == std::string::npos || colon == 0) throw std::invalid_argument("--script: \"" + item + "\" is not FRAME:KEY");
     ScriptedKey k;
+    const std::string frames = item.substr(0, colon);
+    const size_t dash = frames.find('-');
     try {
       size_t used = 0;
-      k.frame = std::stoi(item.substr(0, colon), &used);
-      if (used != colon || k.frame < 0) throw std::invalid_argument("frame");
+      k.frame = std::stoi(frames.substr(0, dash), &used);
+      if (used != std::min(dash, frames.size()) || k.frame < 0) throw std::invalid_argument("frame");
+      k.release = k.frame + 1;
+      if (dash != std::string::npos) {
+        k.release = std::stoi(frames.substr(dash + 1), &used);
+        if (used != frames.size() - dash - 1 || k.release <= k.frame) throw std::invalid_argument("frame");
+      }
     } catch (const std::exception&) {
-      throw std::invalid_argument("--script: \"" + item + "\": the frame must be a number >= 0");
+      throw std::invalid_argument("--script: \"" + item + "\": FRAME or FROM-TO must be numbers >= 0, TO after FROM");
     }
     std::string name = item.substr(colon + 1);
     for (char& c : name) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -68,9 +75,17 @@ struct WindowState {
 WindowState& state(GLFWwindow* w) { return *static_cast<WindowState*>(glfwGetWindowUserPointer(w)); }
 
 // Installed before ImGui's GLFW backend, which chains to them; each first asks whether ImGui wants the input.
+// A release always reaches the app, so that a key held while ImGui took the keyboard does not stay held
+// (GLFW also releases the keys held when the window loses the focus).
 void on_key(GLFWwindow* w, int key, int, int action, int) {
+  WindowApp& app = *state(w).app;
+  if (action == GLFW_RELEASE) {
+    app.on_key_state(key, false);
+    return;
+  }
   if (ImGui::GetCurrentContext() && ImGui::GetIO().WantCaptureKeyboard) return;
-  if (action == GLFW_PRESS || action == GLFW_REPEAT) state(w).app->on_key(key);
+  if (action == GLFW_PRESS) app.on_key_state(key, true);
+  app.on_key(key);  // the press and its repeats
 }
 
 void on_mouse_button(GLFWwindow* w, int button, int action, int) {
@@ -122,11 +137,14 @@ void run_loop(render::GlfwContext& context, WindowApp& app, const WindowOptions&
   auto previous = Clock::now();
   for (int frame = 0; !context.should_close() && !app.quit_requested; ++frame) {
     glfwPollEvents();
-    for (const ScriptedKey& k : options.script)
+    for (const ScriptedKey& k : options.script) {
       if (k.frame == frame) {
-        std::cout << "prep-demo: frame " << frame << ": scripted key " << k.key << "\n";
+        std::cout << "prep-demo: frame " << frame << ": scripted key " << k.key << " down\n";
+        app.on_key_state(k.key, true);
         app.on_key(k.key);
       }
+      if (k.release == frame) app.on_key_state(k.key, false);
+    }
     const auto now = Clock::now();
     const float dt = std::min(static_cast<float>(std::chrono::duration<double>(now - previous).count()), 0.1f);
     previous = now;

@@ -11,14 +11,16 @@
 
 namespace prep::demo {
 
-// One scripted key press: at frame `frame`, press `key` (GLFW key code), as if typed.
+// One scripted key: pressed at frame `frame` (GLFW key code), as if typed, and released at `release`.
 struct ScriptedKey {
   int frame = 0;
   int key = 0;
+  int release = 1;  // after frame
 };
 
-// Parses "FRAME:KEY,FRAME:KEY,..." with KEY a letter, a digit, or one of space, enter, period, left, right,
-// up, down, escape (e.g. "20:e,40:space"). Throws std::invalid_argument naming the bad item.
+// Parses "ITEM,ITEM,..." with ITEM either FRAME:KEY (a press released the next frame) or FROM-TO:KEY (held
+// from frame FROM, released at frame TO), KEY a letter, a digit, or one of space, enter, period, left,
+// right, up, down, escape (e.g. "20:e,40:space,60-120:w"). Throws std::invalid_argument naming the bad item.
 std::vector<ScriptedKey> parse_key_script(const std::string& text);
 
 struct WindowOptions {

@@ -248,6 +248,10 @@ WorldSession::Snapshot WorldSession::capture() const {
 
 void WorldSession::tick() {
   previous_ = std::move(current_);
+  if (steer_ != glm::vec2(0.0f)) {
+    const WorldCharacter& u = world_->characters()[static_cast<size_t>(world_->user())];
+    set_goal(u.position + kSteerLead * steer_);
+  }
   world_->step();
   current_ = capture();
   const World::StageTimes& t = world_->stage_times();
@@ -401,7 +405,10 @@ void WorldSession::set_goal(glm::vec2 goal) {
   else pending_goal_.assign(1, goal);
 }
 
-void WorldSession::move_goal(glm::vec2 delta) { set_goal(goal() + delta); }
+void WorldSession::steer(glm::vec2 direction) {
+  const float len = glm::length(direction);
+  steer_ = len > 1e-6f ? direction / len : glm::vec2(0.0f);
+}
 
 void WorldSession::pick_object(int object) {
   if (object < 0 || object >= static_cast<int>(scenario_.objects.size())) return;

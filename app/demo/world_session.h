@@ -76,6 +76,9 @@ class WorldSession {
   static constexpr int kMaxTicksPerFrame = 6;      // 0.1 s of simulation per frame at most
   static constexpr double kRetrainDelay = 0.5;     // s of wall time after the last policy-relevant change
   static constexpr size_t kSampleHistory = 600;    // ticks kept for the plots (10 s at 60 Hz)
+  // m the steered goal leads the character: beyond the goal radius and the stopping distance of a walk,
+  // so the controller keeps walking, and short enough that letting go stops the character soon.
+  static constexpr float kSteerLead = 1.8f;
 
   explicit WorldSession(SessionOptions options = {});
   ~WorldSession();
@@ -126,8 +129,14 @@ class WorldSession {
   bool launch_prepared();
   std::optional<TargetAction> prepared_action() const;  // the action the user's source calls for
   void set_goal(glm::vec2 goal);
-  void move_goal(glm::vec2 delta);
   glm::vec2 goal() const;  // the user's current goal (the last one set once reached)
+  // Steering, as in a game (the demo's W A S D held): while a direction on the floor is given (any
+  // length; zero: none), before every tick the user's goal is placed kSteerLead ahead of the user's
+  // character in that direction, so the character walks that way at its own pace, turning as the
+  // direction turns. steer({0, 0}) lets go: the goal stays where it was last placed, close ahead, and the
+  // character walks there and stops. Given before the world runs, it applies once it does.
+  void steer(glm::vec2 direction);
+  glm::vec2 steering() const { return steer_; }  // unit, or zero
   // Picking an object makes it the source of influence and sets the goal where acting on it leads: a
   // ball is the goal itself (Sec. 7.2's kick); an obstacle, 2 m beyond it along the approach; an opponent
   // is faced (the goal on it).
@@ -186,6 +195,7 @@ class WorldSession {
   int pending_pick_ = -1;
   std::optional<bool> auto_override_;
   glm::vec2 last_goal_{0.0f};
+  glm::vec2 steer_{0.0f};
 
   std::deque<TickSample> samples_;
   World::StageTimes stage_times_;

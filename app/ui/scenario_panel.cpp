@@ -124,7 +124,7 @@ void scenario_panel(demo::DemoApp& app) {
     launch_buttons(s, app);
     ImGui::Separator();
     readout(s);
-    ImGui::TextDisabled("click: floor = goal, object = source; WASD: goal");
+    ImGui::TextDisabled("click: floor = goal, object = source; WASD steer");
     if (!app.message.empty()) ImGui::TextWrapped("%s", app.message.c_str());
     if (!s.notice().empty()) ImGui::TextWrapped("%s", s.notice().c_str());
     ImGui::PopItemWidth();

@@ -199,26 +199,49 @@ TEST_CASE("demo screenshot, fight: the user and the opponents where the engine h
   check_panels(run);
 }
 
-TEST_CASE("demo keys: WASD move the goal relative to the camera, digits launch, T toggles auto, P pauses") {
+TEST_CASE("demo keys: WASD held steer relative to the camera, digits launch, T toggles auto, P pauses") {
   DemoRun run("kick", 0.5f);
   demo::DemoApp& app = *run.app;
   demo::WorldSession& s = run.session;
-  const glm::vec2 before = s.goal();
-  glm::vec3 f = app.view.camera.target - app.view.camera.eye();
-  const glm::vec2 forward = glm::normalize(glm::vec2(f.x, f.z));
+  const auto user = [&]() -> const WorldCharacter& { return s.world()->characters()[static_cast<size_t>(s.world()->user())]; };
+  const glm::vec3 f = app.view.camera.target - app.view.camera.eye();
+  const glm::vec2 forward = glm::normalize(glm::vec2(f.x, f.z)), right(-forward.y, forward.x);
+  const glm::vec2 start = user().position;
+  // D held: the goal leads the character to the camera's right (away from the ball ahead); the character
+  // turns that way (its turning motions, a gait cycle each, the first when the stride playing ends) and
+  // walks on that way.
+  app.on_key_state(GLFW_KEY_D, true);
+  glm::vec2 before_last(0.0f);
+  for (int i = 0; i < 100; ++i) {
+    app.skip_frame(1.0f / 30.0f);
+    if (i == 84) before_last = user().position;
+  }
+  glm::vec2 lead = s.goal() - user().position;
+  CHECK(glm::length(lead) == doctest::Approx(demo::WorldSession::kSteerLead).epsilon(0.03));
+  CHECK(glm::dot(glm::normalize(lead), right) > 0.99f);
+  CHECK(glm::dot(glm::vec2(std::sin(user().heading), std::cos(user().heading)), right) > 0.7f);  // turned
+  CHECK(glm::dot(user().position - before_last, right) > 0.1f);  // and walking that way
+  // The world's goal is the one steered (the user's single waypoint).
+  REQUIRE(user().goal.size() == 1);
+  CHECK(glm::length(user().goal.front() - s.goal()) < 1e-5f);
+  // W with it: the diagonal; a repeat of the press changes nothing.
+  app.on_key_state(GLFW_KEY_W, true);
   app.on_key(GLFW_KEY_W);
-  const glm::vec2 after = s.goal();
-  CHECK(glm::length(after - before) == doctest::Approx(demo::DemoApp::kGoalStep).epsilon(1e-4));
-  CHECK(glm::dot(glm::normalize(after - before), forward) == doctest::Approx(1.0f).epsilon(1e-4));
-  // The world's goal is the one moved (the user's single waypoint).
-  const WorldCharacter& u = s.world()->characters()[static_cast<size_t>(s.world()->user())];
-  REQUIRE(u.goal.size() == 1);
-  CHECK(u.goal.front().x == doctest::Approx(after.x));
-  CHECK(u.goal.front().y == doctest::Approx(after.y));
-  app.on_key(GLFW_KEY_D);
-  app.on_key(GLFW_KEY_A);
-  app.on_key(GLFW_KEY_S);
-  CHECK(glm::length(s.goal() - before) < 1e-4f);
+  app.skip_frame(1.0f / 30.0f);
+  lead = s.goal() - user().position;
+  CHECK(glm::dot(glm::normalize(lead), glm::normalize(forward + right)) > 0.99f);
+  // A against D cancels (W still steers forward); the arrow of a held key adds nothing.
+  app.on_key_state(GLFW_KEY_A, true);
+  app.on_key_state(GLFW_KEY_UP, true);
+  app.skip_frame(1.0f / 30.0f);
+  CHECK(glm::dot(glm::normalize(s.goal() - user().position), forward) > 0.99f);
+  // All let go: the goal stays where it was last placed.
+  for (int key : {GLFW_KEY_W, GLFW_KEY_A, GLFW_KEY_D, GLFW_KEY_UP}) app.on_key_state(key, false);
+  app.skip_frame(1.0f / 30.0f);
+  const glm::vec2 kept = s.goal();
+  for (int i = 0; i < 10; ++i) app.skip_frame(1.0f / 30.0f);
+  CHECK(s.goal() == kept);
+  CHECK(s.steering() == glm::vec2(0.0f));
 
   const bool auto_on = s.auto_launch();
   app.on_key(GLFW_KEY_T);

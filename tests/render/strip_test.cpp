@@ -40,6 +40,15 @@ TEST_CASE("key scripts parse and reject bad items") {
   CHECK(keys[1].frame == 10);
   CHECK(keys[3].frame == 20);
   CHECK(keys[0].key != keys[1].key);
+  CHECK(keys[0].release == 4);  // a press lasts a frame
+  // FROM-TO: held from FROM, released at TO.
+  const auto held = demo::parse_key_script("30-90:w");
+  REQUIRE(held.size() == 1);
+  CHECK(held[0].frame == 30);
+  CHECK(held[0].release == 90);
+  CHECK_THROWS_AS(demo::parse_key_script("30-20:w"), std::invalid_argument);
+  CHECK_THROWS_AS(demo::parse_key_script("30-:w"), std::invalid_argument);
+  CHECK_THROWS_AS(demo::parse_key_script("30x:w"), std::invalid_argument);
   CHECK_THROWS_AS(demo::parse_key_script("x:e"), std::invalid_argument);
   CHECK_THROWS_AS(demo::parse_key_script("5:nosuchkey"), std::invalid_argument);
   CHECK_THROWS_AS(demo::parse_key_script("5"), std::invalid_argument);

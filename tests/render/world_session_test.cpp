@@ -5,6 +5,7 @@
 #include <doctest/doctest.h>
 
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <set>
 #include <thread>
@@ -139,7 +140,7 @@ TEST_CASE("first start and retraining run in the background: the scene shows and
   // The scene before the world runs: the course is there at once.
   CHECK(s.scene(false).objects.size() == 3);
   CHECK(s.scene(false).goal.size() == 1);
-  s.move_goal({1.0f, 0.0f});  // intent before the world exists is kept
+  s.set_goal(s.goal() + glm::vec2(1.0f, 0.0f));  // intent before the world exists is kept
   bool saw_training = false, saw_characters = false;
   const auto give_up = std::chrono::steady_clock::now() + std::chrono::minutes(3);  // a guard, not a timing
   while (s.phase() != demo::SessionPhase::Running && std::chrono::steady_clock::now() < give_up) {
@@ -193,4 +194,54 @@ TEST_CASE("first start and retraining run in the background: the scene shows and
   s.set_params(r2);
   CHECK_FALSE(s.policy_stale());
   CHECK_FALSE(s.retraining());
+}
+
+TEST_CASE("steering: the goal leads the character in the held direction, the character follows and stops once let go") {
+  // An open floor: the user alone, its goal ahead; nothing to prepare for.
+  std::filesystem::create_directories(test::tmp_dir());
+  const std::string floor = test::tmp_dir() + "/demo_open_floor.json";
+  {
+    std::FILE* f = std::fopen(floor.c_str(), "w");
+    REQUIRE(f);
+    std::fputs("{\"name\": \"open floor\", \"characters\": [{\"position\": [0, 0], \"control\": \"user\"}], \"goal\": [0, 5]}", f);
+    std::fclose(f);
+  }
+  demo::WorldSession s(blocking());
+  s.open(floor);
+  const double dt = 1.0 / 30.0;
+  const auto user = [&]() -> const WorldCharacter& { return s.world()->characters()[static_cast<size_t>(s.world()->user())]; };
+  const glm::vec2 start = user().position;
+  // Along +X, to the character's right, held for 4 s.
+  const glm::vec2 dir(1.0f, 0.0f);
+  s.steer(3.0f * dir);  // any length: a direction
+  CHECK(glm::length(s.steering() - dir) < 1e-6f);
+  glm::vec2 at_3s(0.0f);
+  for (int f = 0; f < 120; ++f) {
+    s.advance(dt);
+    // Every tick the goal is kSteerLead ahead of the character, in the held direction (the world's goal).
+    REQUIRE(user().goal.size() == 1);
+    CHECK(glm::length(user().goal.front() - (user().position + demo::WorldSession::kSteerLead * dir)) < 0.05f);
+    if (f == 89) at_3s = user().position;
+  }
+  // It turns that way (its turning motions: about 45 degrees a gait cycle, walking on meanwhile), then
+  // walks along it at a walking pace, facing it.
+  CHECK((user().position - start).x > 1.5f);
+  const glm::vec2 last_second = user().position - at_3s;
+  CHECK(glm::dot(last_second, dir) > 0.95f * glm::length(last_second));
+  CHECK(glm::length(last_second) > 0.6f);
+  CHECK(glm::length(last_second) < 1.8f);
+  CHECK(glm::dot(glm::vec2(std::sin(user().heading), std::cos(user().heading)), dir) > 0.95f);
+
+  // Let go: the goal stays where it was last placed, and the character walks there and stops.
+  s.steer({0.0f, 0.0f});
+  CHECK(s.steering() == glm::vec2(0.0f));
+  const glm::vec2 goal = s.goal();
+  CHECK(glm::length(goal - user().position) == doctest::Approx(demo::WorldSession::kSteerLead).epsilon(0.05));
+  for (int f = 0; f < 120; ++f) s.advance(dt);
+  CHECK(s.goal() == goal);
+  CHECK(s.world()->goal_reached());
+  CHECK(glm::length(user().position - goal) < s.params().reward.goal_radius + 0.3f);
+  const glm::vec2 rest = user().position;
+  for (int f = 0; f < 30; ++f) s.advance(dt);
+  CHECK(glm::length(user().position - rest) < 0.1f);  // standing
 }

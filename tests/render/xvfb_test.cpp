@@ -1,4 +1,4 @@
-// The windowed demo under a virtual display (scripts/xvfb_smoke.sh): it starts, key presses move the
+// The windowed demo under a virtual display (scripts/xvfb_smoke.sh): it starts, a held key steers the
 // World's goal (the script checks what the demo prints on closing), and the screenshot taken from the
 // window shows the scene in the middle and the panels in their columns. Skipped without xvfb-run.
 #include <doctest/doctest.h>
@@ -45,7 +45,7 @@ Counts count(const render::Image& image, int x0, int y0, int x1, int y1) {
 
 }  // namespace
 
-TEST_CASE("windowed demo under Xvfb: keys move the goal, the window shows the scene and the panels") {
+TEST_CASE("windowed demo under Xvfb: a held key steers the goal, the window shows the scene and the panels") {
   const std::string build = build_dir();
   if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0 || build.empty() ||
       !std::filesystem::exists(build + "/prep-demo")) {
@@ -61,7 +61,7 @@ TEST_CASE("windowed demo under Xvfb: keys move the goal, the window shows the sc
                               "/scripts/xvfb_smoke.sh '" + build + "' '" + png + "' > '" + log + "' 2>&1";
   const int status = std::system(command.c_str());
   INFO("log: " << log);
-  REQUIRE(status == 0);  // the script checked that the keys moved the goal and that a 1280x720 PNG came out
+  REQUIRE(status == 0);  // the script checked that the keys steered the goal and that a 1280x720 PNG came out
   const render::Image image = render::read_png(png);
   REQUIRE(image.width == 1280);
   REQUIRE(image.height == 720);
