@@ -205,8 +205,16 @@ WorldAssets make_world_assets(std::shared_ptr<const MotionSet> set, const Params
     t.reach = glm::dot(q, forward_of(h));
     t.lateral = glm::dot(q, left_of(h));
     t.release_frame = release_frame_of(*set, mc, t.action, t.reference_frame, meets, peak_frame);
+    for (int f = t.reference_frame; f <= std::max(t.reference_frame, mc.target_frame); ++f)
+      t.advance.push_back(glm::dot(floor_xz(mc.clip.frames[static_cast<size_t>(f)].root_position) - origin, forward_of(h)));
   }
   return a;
+}
+
+int TargetMotion::entry_frame(float past_launch_point) const {
+  for (size_t k = 0; k < advance.size(); ++k)
+    if (advance[k] >= past_launch_point) return reference_frame + static_cast<int>(k);
+  return reference_frame + static_cast<int>(advance.size()) - 1;  // T_t at the latest
 }
 
 // ---------------------------------------------------------------------------------------------------------
@@ -527,9 +535,12 @@ bool World::start_target(int index, TargetAction action, int object, int target_
   if (object >= 0) objects_[static_cast<size_t>(object)].used = true;
 
   // Enter the target clip at T_p, where the prepared character stands and faces; then back to walking.
+  // Past the launch point of an obstacle, the clip is entered where it has come as far (TargetMotion::advance).
+  const bool across_obstacle = object >= 0 && is_across(objects_[static_cast<size_t>(object)].spec.type);
+  const int entry = at_source && across_obstacle && c.to_launch < 0.0f ? t.entry_frame(-c.to_launch) : t.reference_frame;
   rt.fade_from = c.pose;
   rt.fade_total = rt.fade_left = params_.graph.blend_s;
-  rt.stream.start(t.clip, t.reference_frame, c.position, c.heading);
+  rt.stream.start(t.clip, entry, c.position, c.heading);
   const int walk = find_cyclic_clip(*assets_->set, Role::Walk);
   bool queued = walk >= 0 && rt.stream.queue(walk);
   for (size_t k = 0; !queued && k < assets_->core_nodes.size(); ++k) queued = rt.stream.queue(assets_->core_nodes[k]);

@@ -91,6 +91,11 @@ struct TargetMotion {
   // strike has landed): from here the character may leave the clip for prepared locomotion when another
   // source is near (world.h, "kept preparation"). -1: the clip always plays to its graph edge.
   int release_frame = -1;
+  // m: how far the root has come along the T_p facing at each frame from T_p to T_t (advance[0] = 0 at
+  // T_p). A character that reaches an obstacle already past its launch point (out of the previous target
+  // clip, between two close obstacles) enters the clip at the frame that has come as far (entry_frame).
+  std::vector<float> advance;
+  int entry_frame(float past_launch_point) const;
 };
 
 // Everything a world needs that does not depend on the scenario: the motion set, its graph, the

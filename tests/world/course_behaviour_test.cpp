@@ -185,3 +185,18 @@ TEST_CASE("goals 0.5-2 m to the side and behind a walking character are reached 
     }
   }
 }
+
+TEST_CASE("late entry: past an obstacle's launch point the clip is entered where it has come as far") {
+  const TargetMotion& duck = builtin_assets()->target(TargetAction::Duck);
+  REQUIRE(duck.advance.size() > 2);
+  CHECK(duck.advance.front() == 0.0f);
+  CHECK(duck.entry_frame(0.0f) == duck.reference_frame);
+  const float half = 0.5f * duck.advance.back();
+  const int f = duck.entry_frame(half);
+  CHECK(f > duck.reference_frame);
+  CHECK(duck.advance[static_cast<size_t>(f - duck.reference_frame)] >= half);
+  CHECK(duck.advance[static_cast<size_t>(f - duck.reference_frame - 1)] < half);
+  // Farther than the clip goes before T_t: T_t, the latest the target movement can start.
+  const MotionClip& clip = builtin_assets()->set->clips[static_cast<size_t>(duck.clip)];
+  CHECK(duck.entry_frame(100.0f) == clip.target_frame);
+}
