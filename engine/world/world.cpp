@@ -539,7 +539,8 @@ bool World::start_target(int index, TargetAction action, int object, int target_
   const bool across_obstacle = object >= 0 && is_across(objects_[static_cast<size_t>(object)].spec.type);
   const int entry = at_source && across_obstacle && c.to_launch < 0.0f ? t.entry_frame(-c.to_launch) : t.reference_frame;
   rt.fade_from = c.pose;
-  rt.fade_total = rt.fade_left = params_.graph.blend_s;
+  // A late entry follows the previous target clip: the poses differ more, the fade is the kept one's.
+  rt.fade_total = rt.fade_left = entry == t.reference_frame ? params_.graph.blend_s : kKeptFadeSeconds;
   rt.stream.start(t.clip, entry, c.position, c.heading);
   const int walk = find_cyclic_clip(*assets_->set, Role::Walk);
   bool queued = walk >= 0 && rt.stream.queue(walk);
