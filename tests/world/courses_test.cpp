@@ -181,3 +181,28 @@ TEST_CASE("random courses: only the object kinds the motion set can act on") {
   o.actions.clear();
   CHECK_THROWS_AS(make_course(o, 0), std::invalid_argument);
 }
+
+TEST_CASE("a random course written as scenario JSON reads back as the same course") {
+  CourseOptions o;
+  o.seed = 5;
+  for (const Scenario& s : make_courses(o, 6)) {
+    CAPTURE(s.name);
+    const Scenario back = parse_scenario(scenario_json(s), "course.json");
+    CHECK(back.name == s.name);
+    CHECK(back.description == s.description);
+    CHECK(back.auto_launch);
+    CHECK(back.motions == s.motions);
+    REQUIRE(back.goal.size() == s.goal.size());
+    for (size_t k = 0; k < s.goal.size(); ++k) CHECK(glm::length(back.goal[k] - s.goal[k]) < 1e-5f);
+    REQUIRE(back.characters.size() == 1);
+    CHECK(back.characters[0].heading == doctest::Approx(s.characters[0].heading).epsilon(1e-5));
+    REQUIRE(back.objects.size() == s.objects.size());
+    for (size_t k = 0; k < s.objects.size(); ++k) {
+      CHECK(back.objects[k].type == s.objects[k].type);
+      CHECK(back.objects[k].action == s.objects[k].action);
+      CHECK(glm::length(back.objects[k].position - s.objects[k].position) < 1e-5f);
+      CHECK(back.objects[k].heading == doctest::Approx(s.objects[k].heading).epsilon(1e-5));
+      CHECK(glm::length(back.objects[k].size - s.objects[k].size) < 1e-5f);
+    }
+  }
+}
