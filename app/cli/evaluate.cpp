@@ -37,7 +37,8 @@ struct Options {
   std::string motions, params, cache, plot_dir;
   float seconds = 60.0f;
   bool json = false, markdown = false;
-  int random = 0;  // > 0: that many random courses instead of --scenario
+  bool random_given = false;  // --random N: N random courses instead of --scenario
+  int random = 0;
   std::uint64_t seed = 1;
   int threads = 0;  // 0: one per core
   std::string save_courses;  // folder to write the random courses to as scenario files
@@ -315,7 +316,7 @@ void run_random(const Options& o) {
 }
 
 void run(const Options& o) {
-  if (o.random != 0) return run_random(o);
+  if (o.random_given) return run_random(o);
   if (o.scenarios.empty()) throw std::invalid_argument("give --scenario FILE (or --random N for random courses)");
   std::vector<prep::EvaluationMethod> methods;
   for (const std::string& name : o.methods) {
@@ -402,7 +403,10 @@ prep::cli::RegisterCommand evaluate_command(
       auto* json = app.add_flag("--json", o->json, "Print JSON: one run's object, or an array of them");
       auto* markdown = app.add_flag("--markdown", o->markdown, "Print the results and acceptance tables in markdown")->excludes(json);
       random->excludes(scenario)->excludes(method)->excludes(seconds)->excludes(plot)->excludes(markdown);
-      app.callback([o] { run(*o); });
+      app.callback([o, random] {
+        o->random_given = random->count() > 0;
+        run(*o);
+      });
     });
 
 }  // namespace
