@@ -154,12 +154,12 @@ void CourseRecorder::observe(const World& world) {
   // Circling near the current waypoint or goal (the last one once the goal is reached).
   const int passed = static_cast<int>(s.goal.size()) - static_cast<int>(u.goal.size());
   const int target = std::min(passed, static_cast<int>(s.goal.size()) - 1);
-  const bool near = glm::length(u.position - s.goal[static_cast<size_t>(target)]) <= course_metric::kCirclingRadius;
-  if (visit_target_ >= 0 && (!near || target != visit_target_)) {
+  const float distance = glm::length(u.position - s.goal[static_cast<size_t>(target)]);
+  if (visit_target_ >= 0 && (distance > course_metric::kCirclingLeave || target != visit_target_)) {
     close_visit(e_, visit_turn_, visit_ticks_, dt_);
     visit_target_ = -1;
   }
-  if (near) {
+  if (visit_target_ >= 0 || distance <= course_metric::kCirclingRadius) {
     if (visit_target_ < 0) {
       visit_target_ = target;
       visit_turn_ = 0.0f;

@@ -20,9 +20,12 @@
 //   over the straight route (start -> each waypoint -> goal) less the goal radius (the goal counts as
 //   reached on its edge, so walking straight in measures at least 1). Waypoints passed at a distance can
 //   make it slightly below 1. Undefined (NaN) when the goal is not reached.
-// - Circling: a visit is a run of ticks within kCirclingRadius of the current waypoint or goal (the last
-//   goal after it is reached); the |heading change| of the ticks of a visit is summed, and a visit whose sum
-//   exceeds 360 degrees counts as circling: the seconds of such visits. The heading is averaged over the
+// - Circling: a visit to the current waypoint or goal (the last goal after it is reached) begins when the
+//   user comes within kCirclingRadius of it and ends when the user is farther than kCirclingLeave from it
+//   or it changes (a waypoint passed): a character orbiting on the edge of the circle, in and out of it
+//   (seen at waypoints after a fight), makes one visit, not many short ones. The |heading change| of the
+//   ticks of a visit is summed, and a visit whose sum exceeds 360 degrees counts as circling: the seconds
+//   of such visits. The heading is averaged over the
 //   last kHeadingWindow seconds first: the pelvis (the root) swings its yaw a few degrees either way in
 //   every stride, some 15 degrees a second summed while walking straight, which over a long visit would
 //   add up to a circle that is not there.
@@ -48,7 +51,8 @@ namespace prep {
 namespace course_metric {
 constexpr float kKeptDistance = 3.0f;      // m: two launches this close keep preparation between them
 constexpr float kRelaxedAlpha = 0.1f;      // alpha below this is relaxed
-constexpr float kCirclingRadius = 2.0f;    // m around the current waypoint or goal
+constexpr float kCirclingRadius = 2.0f;    // m around the current waypoint or goal: a visit begins within ...
+constexpr float kCirclingLeave = 3.0f;     // m: ... and ends beyond this
 constexpr float kCirclingTurnDeg = 360.0f; // a visit turning more than this is circling
 constexpr float kHeadingWindow = 1.0f;     // s: the heading is averaged over this (about a gait cycle)
 constexpr float kRelaxSeconds = 2.5f;      // s a run goes on after the goal and the last target motion
