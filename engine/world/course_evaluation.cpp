@@ -29,16 +29,6 @@ float wrap_angle(float a) {  // to (-pi, pi]
 
 glm::vec2 floor_xz(const glm::vec3& p) { return {p.x, p.z}; }
 
-// A visit to a waypoint or the goal that has ended: circling if it turned more than kCirclingTurnDeg.
-void close_visit(CourseEvaluation& e, float turn, int ticks, float dt) {
-  const float degrees = turn * 180.0f / kPi;
-  e.max_visit_turn_deg = std::max(e.max_visit_turn_deg, degrees);
-  if (degrees > course_metric::kCirclingTurnDeg) {
-    e.circling_seconds += static_cast<float>(ticks) * dt;
-    ++e.circling_visits;
-  }
-}
-
 std::string percent(int part, int whole) {
   char b[32];
   std::snprintf(b, sizeof b, "%.1f%%", whole > 0 ? 100.0 * part / whole : 0.0);
@@ -65,21 +55,61 @@ float CourseEvaluation::no_source_mean() const {
 float CourseEvaluation::no_source_median() const { return percentile(no_source_alpha, 50.0f); }
 
 // ---------------------------------------------------------------------------------------------------------
+// Circling
+
+CirclingMeter::CirclingMeter(float dt, float heading)
+    : dt_(dt), last_heading_(heading), heading_(heading),
+      window_(static_cast<size_t>(std::max(1L, std::lround(course_metric::kHeadingWindow / dt))), heading),
+      sum_(static_cast<double>(heading) * static_cast<double>(window_.size())), smoothed_(heading) {}
+
+void CirclingMeter::add(glm::vec2 position, float heading, int goal_index, glm::vec2 goal_point) {
+  // The heading averaged over the window, unwrapped so that the mean of headings either side of 180
+  // degrees is not 0.
+  heading_ += wrap_angle(heading - last_heading_);
+  last_heading_ = heading;
+  sum_ += static_cast<double>(heading_) - static_cast<double>(window_[next_]);
+  window_[next_] = heading_;
+  next_ = (next_ + 1) % window_.size();
+  const float previous = smoothed_;
+  smoothed_ = static_cast<float>(sum_ / static_cast<double>(window_.size()));
+
+  const float distance = glm::length(position - goal_point);
+  if (visit_goal_ >= 0 && (distance > course_metric::kCirclingLeave || goal_index != visit_goal_)) finish();
+  if (visit_goal_ < 0 && distance <= course_metric::kCirclingRadius) {
+    visit_goal_ = goal_index;
+    visit_turn_ = 0.0f;
+    visit_ticks_ = 0;
+  }
+  if (visit_goal_ >= 0) {
+    visit_turn_ += std::fabs(smoothed_ - previous);
+    ++visit_ticks_;
+  }
+}
+
+void CirclingMeter::finish() {
+  if (visit_goal_ < 0) return;
+  const float degrees = visit_turn_ * 180.0f / kPi;
+  max_turn_deg_ = std::max(max_turn_deg_, degrees);
+  if (degrees > course_metric::kCirclingTurnDeg) {
+    seconds_ += static_cast<float>(visit_ticks_) * dt_;
+    ++visits_;
+  }
+  visit_goal_ = -1;
+}
+
+// ---------------------------------------------------------------------------------------------------------
 // Recorder
 
-CourseRecorder::CourseRecorder(const World& world) {
+CourseRecorder::CourseRecorder(const World& world)
+    : circling_(world.params().runtime.fixed_dt, world.characters()[static_cast<size_t>(world.user())].heading) {
   const Scenario& s = world.scenario();
   const WorldCharacter& u = world.characters()[static_cast<size_t>(world.user())];
   e_.name = s.name;
   e_.description = s.description;
   e_.route_length = polyline_length(course_route(s));
   e_.objects = static_cast<int>(s.objects.size());
-  dt_ = world.params().runtime.fixed_dt;
   launches_seen_ = world.launches().size();
   last_position_ = u.position;
-  last_heading_ = heading_ = smoothed_heading_ = u.heading;
-  headings_.assign(static_cast<size_t>(std::max(1L, std::lround(course_metric::kHeadingWindow / dt_))), u.heading);
-  heading_sum_ = static_cast<double>(u.heading) * static_cast<double>(headings_.size());
   e_.times.push_back(world.time());
   e_.alpha.push_back(u.alpha);
   was_out_ = !u.source_in_range && !u.in_target;
@@ -142,42 +172,23 @@ void CourseRecorder::observe(const World& world) {
   }
   was_out_ = out;
 
-  // The heading averaged over the window, unwrapped so that the mean of headings either side of 180
-  // degrees is not 0.
-  heading_ += wrap_angle(u.heading - last_heading_);
-  heading_sum_ += static_cast<double>(heading_) - static_cast<double>(headings_[heading_next_]);
-  headings_[heading_next_] = heading_;
-  heading_next_ = (heading_next_ + 1) % headings_.size();
-  const float previous_smoothed = smoothed_heading_;
-  smoothed_heading_ = static_cast<float>(heading_sum_ / static_cast<double>(headings_.size()));
-
   // Circling near the current waypoint or goal (the last one once the goal is reached).
   const int passed = static_cast<int>(s.goal.size()) - static_cast<int>(u.goal.size());
   const int target = std::min(passed, static_cast<int>(s.goal.size()) - 1);
-  const float distance = glm::length(u.position - s.goal[static_cast<size_t>(target)]);
-  if (visit_target_ >= 0 && (distance > course_metric::kCirclingLeave || target != visit_target_)) {
-    close_visit(e_, visit_turn_, visit_ticks_, dt_);
-    visit_target_ = -1;
-  }
-  if (visit_target_ >= 0 || distance <= course_metric::kCirclingRadius) {
-    if (visit_target_ < 0) {
-      visit_target_ = target;
-      visit_turn_ = 0.0f;
-      visit_ticks_ = 0;
-    }
-    visit_turn_ += std::fabs(smoothed_heading_ - previous_smoothed);
-    ++visit_ticks_;
-  }
+  circling_.add(u.position, u.heading, target, s.goal[static_cast<size_t>(target)]);
 
   last_position_ = u.position;
-  last_heading_ = u.heading;
 }
 
 CourseEvaluation CourseRecorder::finish(const World& world) const {
   CourseEvaluation e = e_;
   e.seconds = world.time();
   if (in_episode_) ++e.unrelaxed_episodes;
-  if (visit_target_ >= 0) close_visit(e, visit_turn_, visit_ticks_, dt_);
+  CirclingMeter circling = circling_;
+  circling.finish();
+  e.circling_seconds = circling.seconds();
+  e.circling_visits = circling.visits();
+  e.max_visit_turn_deg = circling.max_turn_deg();
 
   const float straight = e.route_length - world.params().reward.goal_radius;
   e.path_ratio = e.reached_goal ? e.path_length / std::max(straight, 1e-3f) : kNaN;

@@ -108,6 +108,33 @@ struct CourseEvaluation {
   float no_source_median() const;
 };
 
+// The circling measure on its own (above), fed one tick at a time.
+class CirclingMeter {
+ public:
+  CirclingMeter(float dt, float heading);  // the first tick's heading (radians)
+  // One tick: the user's position and heading (radians, as the world gives it) and its current goal
+  // point (`goal_index` tells one from the next).
+  void add(glm::vec2 position, float heading, int goal_index, glm::vec2 goal_point);
+  void finish();                                        // ends a visit under way
+  float seconds() const { return seconds_; }            // of the visits that circled
+  int visits() const { return visits_; }                // that circled
+  float max_turn_deg() const { return max_turn_deg_; }  // the largest turn of any visit
+
+ private:
+  float dt_;
+  float last_heading_;         // as given last tick
+  float heading_;              // unwrapped (continuous over turns)
+  std::vector<float> window_;  // the unwrapped heading over the last kHeadingWindow of ticks (a ring) ...
+  size_t next_ = 0;
+  double sum_;                 // ... their sum
+  float smoothed_;             // ... and their mean
+  int visit_goal_ = -1;        // the goal point of the visit under way, -1: none
+  float visit_turn_ = 0;       // radians turned in it so far
+  int visit_ticks_ = 0;
+  float seconds_ = 0, max_turn_deg_ = 0;
+  int visits_ = 0;
+};
+
 class CourseRecorder {
  public:
   explicit CourseRecorder(const World& world);  // the world's current state is the first frame
@@ -118,20 +145,11 @@ class CourseRecorder {
   CourseEvaluation e_;
   size_t launches_seen_ = 0;
   glm::vec2 last_position_{0.0f};
-  float last_heading_ = 0;       // the user's heading last tick, as the world gives it
   bool was_out_ = true;          // last tick: no source in range and not in a target motion
   bool seen_source_ = false;     // a source was in range (or a target played) before
-  bool in_episode_ = false, episode_relaxed_ = false;
+  bool in_episode_ = false;      // a no-source episode has not relaxed yet
   float episode_start_ = 0;
-  int visit_target_ = -1;        // goal point (index into Scenario::goal) of the visit under way, -1: none
-  float visit_turn_ = 0;         // radians turned in it so far
-  float heading_ = 0;            // the user's heading, unwrapped (continuous over turns)
-  std::vector<float> headings_;  // its last kHeadingWindow of ticks (a ring) ...
-  size_t heading_next_ = 0;
-  double heading_sum_ = 0;       // ... their sum
-  float smoothed_heading_ = 0;   // and their mean
-  int visit_ticks_ = 0;
-  float dt_ = 0;
+  CirclingMeter circling_;
 };
 
 // The longest run for a course (the header's limit), s.

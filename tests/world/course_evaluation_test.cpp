@@ -57,6 +57,54 @@ TEST_CASE("percentile: linear between the closest ranks") {
   CHECK(std::isnan(percentile({}, 50)));
 }
 
+TEST_CASE("circling: an orbit round the goal turns past 360 degrees, a pass through and the pelvis' sway do not") {
+  constexpr float dt = 1.0f / 60.0f, kPi = 3.14159265358979f;
+  const glm::vec2 goal{0.0f, 0.0f};
+
+  // 15 s on a circle of 1.5 m round the goal at 1 m/s, counter-clockwise from +X (heading 0, then turning
+  // right): the heading turns 1/1.5 rad/s, 573 degrees.
+  CirclingMeter orbit(dt, 0.0f);
+  for (int k = 1; k <= 900; ++k) {
+    const float a = static_cast<float>(k) * dt / 1.5f;  // angle on the circle, counter-clockwise from +X
+    orbit.add({1.5f * std::cos(a), 1.5f * std::sin(a)}, std::remainder(-a, 2.0f * kPi), 0, goal);
+  }
+  orbit.finish();
+  CHECK(orbit.visits() == 1);
+  CHECK(orbit.seconds() == doctest::Approx(15.0f).epsilon(0.01));
+  CHECK(orbit.max_turn_deg() == doctest::Approx(573.0f - 19.0f).epsilon(0.03));  // less the averaging's lag
+
+  // Walking straight through, 0.5 m beside the goal, swaying the heading 6 degrees either way at 1 Hz; then
+  // standing 30 s within 2 m of it still swaying: a raw sum would be 24 degrees a second.
+  CirclingMeter sway(dt, 0.0f);
+  for (int k = 1; k <= 2400; ++k) {
+    const float t = static_cast<float>(k) * dt;
+    const glm::vec2 p{0.5f, std::min(-4.0f + 1.4f * t, 1.0f)};
+    sway.add(p, 6.0f * kPi / 180.0f * std::sin(2.0f * kPi * t), 0, goal);
+  }
+  sway.finish();
+  CHECK(sway.visits() == 0);
+  CHECK(sway.seconds() == 0.0f);
+  CHECK(sway.max_turn_deg() < 30.0f);
+
+  // In and out of the 2 m circle on an orbit of 2.2 m: one visit, as long as it stays within 3 m.
+  CirclingMeter edge(dt, 0.0f);
+  edge.add({1.9f, 0.0f}, 0.0f, 0, goal);  // comes within 2 m
+  for (int k = 1; k <= 900; ++k) {
+    const float a = static_cast<float>(k) * dt / 2.2f;
+    edge.add({2.2f * std::cos(a), 2.2f * std::sin(a)}, std::remainder(-a, 2.0f * kPi), 0, goal);
+  }
+  edge.finish();
+  CHECK(edge.visits() == 1);
+  // A new goal point ends the visit: the same orbit split by a waypoint passed half way is two short turns.
+  CirclingMeter split(dt, 0.0f);
+  for (int k = 1; k <= 900; ++k) {
+    const float a = static_cast<float>(k) * dt / 1.5f;
+    split.add({1.5f * std::cos(a), 1.5f * std::sin(a)}, std::remainder(-a, 2.0f * kPi), k <= 450 ? 0 : 1, goal);
+  }
+  split.finish();
+  CHECK(split.visits() == 0);
+}
+
 TEST_CASE("a straight walk to the goal: path ratio at least 1, no circling, no source, the run ends 2.5 s after") {
   const Scenario s = straight_course(8.0f);
   const CourseEvaluation e = evaluate_course(s, builtin_assets());
