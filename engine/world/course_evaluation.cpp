@@ -55,6 +55,35 @@ float CourseEvaluation::no_source_mean() const {
 float CourseEvaluation::no_source_median() const { return percentile(no_source_alpha, 50.0f); }
 
 // ---------------------------------------------------------------------------------------------------------
+// Alpha with no source in range
+
+NoSourceMeter::NoSourceMeter(bool out, float alpha) : was_out_(out) {
+  if (out) alpha_.push_back(alpha);
+}
+
+void NoSourceMeter::add(float time, bool out, float alpha) {
+  if (out) {
+    alpha_.push_back(alpha);
+    if (!was_out_) {  // out of range, or out of a target motion, now: an episode begins
+      in_episode_ = true;
+      episode_start_ = time;
+    }
+    if (in_episode_ && alpha < course_metric::kRelaxedAlpha) {
+      relax_.push_back(time - episode_start_);
+      in_episode_ = false;
+    }
+  } else {
+    finish();
+  }
+  was_out_ = out;
+}
+
+void NoSourceMeter::finish() {
+  if (in_episode_) ++unrelaxed_;
+  in_episode_ = false;
+}
+
+// ---------------------------------------------------------------------------------------------------------
 // Circling
 
 CirclingMeter::CirclingMeter(float dt, float heading)
@@ -101,7 +130,10 @@ void CirclingMeter::finish() {
 // Recorder
 
 CourseRecorder::CourseRecorder(const World& world)
-    : circling_(world.params().runtime.fixed_dt, world.characters()[static_cast<size_t>(world.user())].heading) {
+    : no_source_(!world.characters()[static_cast<size_t>(world.user())].source_in_range &&
+                     !world.characters()[static_cast<size_t>(world.user())].in_target,
+                 world.characters()[static_cast<size_t>(world.user())].alpha),
+      circling_(world.params().runtime.fixed_dt, world.characters()[static_cast<size_t>(world.user())].heading) {
   const Scenario& s = world.scenario();
   const WorldCharacter& u = world.characters()[static_cast<size_t>(world.user())];
   e_.name = s.name;
@@ -112,9 +144,6 @@ CourseRecorder::CourseRecorder(const World& world)
   last_position_ = u.position;
   e_.times.push_back(world.time());
   e_.alpha.push_back(u.alpha);
-  was_out_ = !u.source_in_range && !u.in_target;
-  seen_source_ = !was_out_;
-  if (was_out_) e_.no_source_alpha.push_back(u.alpha);
 }
 
 void CourseRecorder::observe(const World& world) {
@@ -154,23 +183,7 @@ void CourseRecorder::observe(const World& world) {
   }
 
   // Alpha with no source in range, and its relaxation per episode.
-  const bool out = !u.source_in_range && !u.in_target;
-  if (out) {
-    e_.no_source_alpha.push_back(u.alpha);
-    if (!was_out_ && seen_source_) {
-      in_episode_ = true;
-      episode_start_ = t;
-    }
-    if (in_episode_ && u.alpha < course_metric::kRelaxedAlpha) {
-      e_.relax_times.push_back(t - episode_start_);
-      in_episode_ = false;
-    }
-  } else {
-    seen_source_ = true;
-    if (in_episode_) ++e_.unrelaxed_episodes;
-    in_episode_ = false;
-  }
-  was_out_ = out;
+  no_source_.add(t, !u.source_in_range && !u.in_target, u.alpha);
 
   // Circling near the current waypoint or goal (the last one once the goal is reached).
   const int passed = static_cast<int>(s.goal.size()) - static_cast<int>(u.goal.size());
@@ -183,7 +196,11 @@ void CourseRecorder::observe(const World& world) {
 CourseEvaluation CourseRecorder::finish(const World& world) const {
   CourseEvaluation e = e_;
   e.seconds = world.time();
-  if (in_episode_) ++e.unrelaxed_episodes;
+  NoSourceMeter no_source = no_source_;
+  no_source.finish();
+  e.no_source_alpha = no_source.alpha();
+  e.relax_times = no_source.relax_times();
+  e.unrelaxed_episodes = no_source.unrelaxed();
   CirclingMeter circling = circling_;
   circling.finish();
   e.circling_seconds = circling.seconds();

@@ -108,6 +108,25 @@ struct CourseEvaluation {
   float no_source_median() const;
 };
 
+// Alpha with no source in range on its own (above), fed one tick at a time: whether the user is out of
+// range (no source in range and not in a target motion) and its alpha.
+class NoSourceMeter {
+ public:
+  NoSourceMeter(bool out, float alpha);  // the first tick
+  void add(float time, bool out, float alpha);
+  void finish();  // an episode under way ends unrelaxed
+  const std::vector<float>& alpha() const { return alpha_; }       // on the ticks out of range
+  const std::vector<float>& relax_times() const { return relax_; }  // s, per episode that relaxed
+  int unrelaxed() const { return unrelaxed_; }
+
+ private:
+  std::vector<float> alpha_, relax_;
+  int unrelaxed_ = 0;
+  bool was_out_;
+  bool in_episode_ = false;  // an episode has not relaxed yet
+  float episode_start_ = 0;
+};
+
 // The circling measure on its own (above), fed one tick at a time.
 class CirclingMeter {
  public:
@@ -145,10 +164,7 @@ class CourseRecorder {
   CourseEvaluation e_;
   size_t launches_seen_ = 0;
   glm::vec2 last_position_{0.0f};
-  bool was_out_ = true;          // last tick: no source in range and not in a target motion
-  bool seen_source_ = false;     // a source was in range (or a target played) before
-  bool in_episode_ = false;      // a no-source episode has not relaxed yet
-  float episode_start_ = 0;
+  NoSourceMeter no_source_;
   CirclingMeter circling_;
 };
 

@@ -57,6 +57,36 @@ TEST_CASE("percentile: linear between the closest ranks") {
   CHECK(std::isnan(percentile({}, 50)));
 }
 
+TEST_CASE("alpha with no source in range: its ticks, and per episode the time to relax below 0.1") {
+  constexpr float dt = 0.1f;
+  NoSourceMeter m(true, 0.0f);  // the start, before any source: out of range, but no episode
+  float t = 0.0f;
+  auto feed = [&](int ticks, bool out, float alpha_from, float alpha_to) {
+    for (int k = 1; k <= ticks; ++k) {
+      t += dt;
+      m.add(t, out, alpha_from + (alpha_to - alpha_from) * static_cast<float>(k) / static_cast<float>(ticks));
+    }
+  };
+  feed(5, true, 0.0f, 0.0f);
+  CHECK(m.relax_times().empty());
+  feed(10, false, 0.0f, 0.8f);   // a source in range: alpha rises to 0.8
+  feed(20, true, 0.8f, 0.0f);    // out of range at t = 1.6 s, alpha falls 0.04 a tick: below 0.1 on tick 18
+  REQUIRE(m.relax_times().size() == 1);
+  CHECK(m.relax_times()[0] == doctest::Approx(17 * dt));
+  feed(3, false, 0.5f, 0.5f);
+  feed(4, true, 0.5f, 0.5f);     // out for 0.4 s, still at 0.5 when the next source comes in range
+  feed(2, false, 0.5f, 0.5f);
+  CHECK(m.unrelaxed() == 1);
+  feed(3, true, 0.05f, 0.05f);   // out of a target motion straight to 0.05: relaxed at once
+  REQUIRE(m.relax_times().size() == 2);
+  CHECK(m.relax_times()[1] == doctest::Approx(0.0f));
+  feed(1, false, 0.9f, 0.9f);
+  feed(3, true, 0.6f, 0.6f);     // the run ends out of range, unrelaxed
+  m.finish();
+  CHECK(m.unrelaxed() == 2);
+  CHECK(m.alpha().size() == 1 + 5 + 20 + 4 + 3 + 3);  // every tick out of range, the first included
+}
+
 TEST_CASE("circling: an orbit round the goal turns past 360 degrees, a pass through and the pelvis' sway do not") {
   constexpr float dt = 1.0f / 60.0f, kPi = 3.14159265358979f;
   const glm::vec2 goal{0.0f, 0.0f};
