@@ -179,7 +179,9 @@ bool draw_course(const CourseOptions& o, Random& rng, Scenario& s) {
 
   glm::vec2 at = user.position;  // the route's point of the last item placed
   std::vector<Footprint> placed;
-  auto walk_gap = [&](size_t gap, float length) {
+  // Along the route by a gap: `length`, or through a waypoint; `extra` first (room to turn at the start).
+  auto walk_gap = [&](size_t gap, float length, float extra) {
+    at += extra * forward_of(direction);
     if (waypoint_in[gap]) {
       at += rng.uniform(2.5f, 4.0f) * forward_of(direction);
       s.goal.push_back(at);
@@ -194,12 +196,12 @@ bool draw_course(const CourseOptions& o, Random& rng, Scenario& s) {
     const Item item = items[i];
     float gap;
     if (i == 0) {
-      gap = (item == Item::Opponent ? rng.uniform(4.0f, 7.0f) : rng.uniform(3.0f, 6.0f)) + (turned ? 2.0f : 0.0f);
+      gap = item == Item::Opponent ? rng.uniform(4.0f, 7.0f) : rng.uniform(3.0f, 6.0f);
     } else {
       const float r = rng.uniform(0.0f, 1.0f);
       gap = r < 0.35f ? rng.uniform(1.5f, 3.0f) : r < 0.75f ? rng.uniform(3.0f, 6.0f) : rng.uniform(6.0f, 10.0f);
     }
-    walk_gap(i, gap);
+    walk_gap(i, gap, i == 0 && turned ? 2.0f : 0.0f);
     bool fits = false;
     ScenarioObject obj;
     for (int attempt = 0; attempt < kObjectTries && !fits; ++attempt) {
@@ -239,7 +241,7 @@ bool draw_course(const CourseOptions& o, Random& rng, Scenario& s) {
     placed.push_back(footprint_of(obj));
     s.objects.push_back(obj);
   }
-  walk_gap(items.size(), rng.uniform(2.5f, 5.0f));
+  walk_gap(items.size(), rng.uniform(2.5f, 5.0f), items.empty() && turned ? 2.0f : 0.0f);
   s.goal.push_back(at);
   return course_is_sound(s);
 }

@@ -8,7 +8,7 @@
 // distributions (U(a, b) uniform):
 // - Orientation: the first leg's direction U(0, 360) degrees. The user starts at (0, 0) facing along the
 //   first leg within U(-20, 20) degrees (65%), or anywhere all round U(-180, 180) (35%; such a start has
-//   2 m more before the first object, room to turn round).
+//   2 m more before whatever comes first, room to turn round).
 // - Opponents (only when the set has a punch): 30% of the courses open with a fight, 1 opponent (65%) or
 //   2 (35%), the first U(4, 7) m along the route, each off the route by U(-1, 1) m, facing back along it,
 //   met with punch_left or punch_right (50/50 among those the set has). They come first because an
