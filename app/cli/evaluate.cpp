@@ -208,11 +208,11 @@ std::string file_stem(const std::string& s) {
 
 // --- Random courses ----------------------------------------------------------------------------------------
 
-// The motion set of --motions for random courses and the Params it runs with: --params, else for a manifest
-// the controller its shipped scenarios name (assets/scenarios/controller_<manifest name>.json) if there is
-// one, else the defaults. Returns the Params file used ("" for the defaults).
+// The Params file random courses run with: --params (made absolute, so that a course saved as a scenario
+// file finds it from its own folder), else for a manifest the controller its shipped scenarios name
+// (assets/scenarios/controller_<manifest name>.json) if there is one; "" for the defaults.
 std::string random_params_file(const Options& o, const std::string& motions) {
-  if (!o.params.empty()) return o.params;
+  if (!o.params.empty()) return std::filesystem::absolute(o.params).string();
   if (motions == "builtin") return "";
   const std::string controller =
       prep::source_dir() + "/assets/scenarios/controller_" + std::filesystem::path(motions).stem().string() + ".json";
@@ -378,7 +378,7 @@ void run(const Options& o) {
 prep::cli::RegisterCommand evaluate_command(
     "evaluate",
     "Measure a scenario's motion under ours / linear / naive: goal, per launch alpha, preparation lead and peak "
-    "deceleration, foot skate, COM in support, pose plausibility, synthesis time (issue 9); or, with --random N, "
+    "deceleration, foot skate, COM in support, pose plausibility, synthesis time; or, with --random N, "
     "N random courses with acceptance checks",
     45, [](CLI::App& app) {
       auto o = std::make_shared<Options>();
