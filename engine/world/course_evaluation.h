@@ -25,10 +25,9 @@
 //   or it changes (a waypoint passed): a character orbiting on the edge of the circle, in and out of it
 //   (seen at waypoints after a fight), makes one visit, not many short ones. The |heading change| of the
 //   ticks of a visit is summed, and a visit whose sum exceeds 360 degrees counts as circling: the seconds
-//   of such visits. The heading is averaged over the
-//   last kHeadingWindow seconds first: the pelvis (the root) swings its yaw a few degrees either way in
-//   every stride, some 15 degrees a second summed while walking straight, which over a long visit would
-//   add up to a circle that is not there.
+//   of such visits. The heading is averaged over the last kHeadingWindow seconds first: the pelvis (the
+//   root) swings its yaw a few degrees either way in every stride, some 15 degrees a second summed while
+//   walking straight, which over a long visit would add up to a circle that is not there.
 // A run (evaluate_course) lasts until the goal is reached and no character plays a target motion, plus
 // kRelaxSeconds (relaxing at the goal is measured), and at most kBaseSeconds + kSecondsPerMetre per metre
 // of straight route.
