@@ -389,7 +389,9 @@ prep::cli::RegisterCommand evaluate_command(
                                     "Run N random courses (engine/world/courses.h) with our method instead of --scenario");
       app.add_option("--seed", o->seed, "Seed of the random courses (default 1): course k of a seed is always the same")
           ->needs(random);
-      app.add_option("--threads", o->threads, "Random courses run on this many threads (default: one per core)")->needs(random);
+      app.add_option("--threads", o->threads, "Random courses run on this many threads (default: one per core)")
+          ->check(CLI::Range(0, 256))
+          ->needs(random);
       app.add_option("--save-courses", o->save_courses,
                      "Also write each random course to DIR/random-<seed>-<k>.json (a scenario for prep run or prep-demo)")
           ->needs(random);
