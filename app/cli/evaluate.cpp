@@ -248,21 +248,26 @@ std::string course_text(const prep::CourseEvaluation& e) {
 std::string totals_text(const prep::CourseTotals& t) {
   std::ostringstream o;
   auto pct = [](int part, int whole) { return whole > 0 ? fixed(100.0 * part / whole, 1) + "%" : std::string("-"); };
-  o << "total over " << t.courses << " courses:\n"
-    << "  goal reached                 " << t.goals << "/" << t.courses << " (" << pct(t.goals, t.courses) << ")\n"
-    << "  alpha at launch >= " << fixed(prep::course_metric::kLaunchAlpha, 2) << "       " << t.launches_prepared << "/"
-    << t.launches << " launches (" << pct(t.launches_prepared, t.launches) << ")\n"
-    << "  alpha at 1 m >= " << fixed(prep::course_metric::kAlpha1m, 2) << "          " << t.prepared_1m << "/" << t.measured_1m
-    << " measured (" << pct(t.prepared_1m, t.measured_1m) << ")\n"
-    << "  objects never acted on       " << t.objects_unused << "/" << t.objects << "\n"
-    << "  path ratio                   median " << fixed(t.path_median, 3) << ", p95 " << fixed(t.path_p95, 3) << "\n"
-    << "  alpha, no source in range    median " << fixed(t.no_source_median, 3) << ", mean " << fixed(t.no_source_mean, 3) << "\n"
-    << "  relaxing below 0.1           median " << fixed(t.relax_median, 2) << " s, max " << fixed(t.relax_max, 2) << " s ("
-    << t.unrelaxed_episodes << " episodes ended unrelaxed)\n"
-    << "  kept preparation (< 3 m)     " << t.kept_pairs << " pairs, lowest alpha min " << fixed(t.kept_min, 2) << ", median "
-    << fixed(t.kept_median, 2) << "\n"
-    << "  circling                     " << t.circling_courses << " courses (" << fixed(t.circling_seconds, 1) << " s)\n"
-    << "checks:\n";
+  auto line = [&o](const std::string& label, const std::string& value) {
+    char b[48];
+    std::snprintf(b, sizeof b, "  %-29s", label.c_str());
+    o << b << value << "\n";
+  };
+  o << "total over " << t.courses << " courses:\n";
+  line("goal reached", std::to_string(t.goals) + "/" + std::to_string(t.courses) + " (" + pct(t.goals, t.courses) + ")");
+  line("alpha at launch >= " + fixed(prep::course_metric::kLaunchAlpha, 2),
+       std::to_string(t.launches_prepared) + "/" + std::to_string(t.launches) + " launches (" + pct(t.launches_prepared, t.launches) + ")");
+  line("alpha at 1 m >= " + fixed(prep::course_metric::kAlpha1m, 2),
+       std::to_string(t.prepared_1m) + "/" + std::to_string(t.measured_1m) + " measured (" + pct(t.prepared_1m, t.measured_1m) + ")");
+  line("objects never acted on", std::to_string(t.objects_unused) + "/" + std::to_string(t.objects));
+  line("path ratio", "median " + fixed(t.path_median, 3) + ", p95 " + fixed(t.path_p95, 3));
+  line("alpha, no source in range", "median " + fixed(t.no_source_median, 3) + ", mean " + fixed(t.no_source_mean, 3));
+  line("relaxing below 0.1", "median " + fixed(t.relax_median, 2) + " s, max " + fixed(t.relax_max, 2) + " s (" +
+                                 std::to_string(t.unrelaxed_episodes) + " episodes ended unrelaxed)");
+  line("kept preparation (< 3 m)", std::to_string(t.kept_pairs) + " pairs, lowest alpha min " + fixed(t.kept_min, 2) +
+                                       ", median " + fixed(t.kept_median, 2));
+  line("circling", std::to_string(t.circling_courses) + " courses (" + fixed(t.circling_seconds, 1) + " s)");
+  o << "checks:\n";
   for (const prep::CourseCheck& c : t.checks) o << "  " << (c.pass ? "pass" : "FAIL") << "  " << c.name << ": " << c.measure << "\n";
   o << (t.pass() ? "all checks pass\n" : "some checks fail\n");
   return o.str();
