@@ -187,7 +187,7 @@ void CourseRecorder::observe(const World& world) {
 
   // Circling near the current waypoint or goal (the last one once the goal is reached).
   const int passed = static_cast<int>(s.goal.size()) - static_cast<int>(u.goal.size());
-  const int target = std::min(passed, static_cast<int>(s.goal.size()) - 1);
+  const int target = std::clamp(passed, 0, static_cast<int>(s.goal.size()) - 1);
   circling_.add(u.position, u.heading, target, s.goal[static_cast<size_t>(target)]);
 
   last_position_ = u.position;
