@@ -135,7 +135,7 @@ TEST_CASE("prep evaluate --random --json: the courses, the total and a pass/fail
   CHECK(t["pass"] == all);
 }
 
-TEST_CASE("prep evaluate --random: text with the checks; bad counts, motion sets and combinations are refused") {
+TEST_CASE("prep evaluate --random: text with the checks, and bad counts, motion sets and combinations refused") {
   const std::string text = run_evaluate({"--random", "1", "--seed", "4"});
   CHECK(text.find("random-4-0") != std::string::npos);
   CHECK(text.find("checks:") != std::string::npos);
