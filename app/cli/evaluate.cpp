@@ -1,21 +1,30 @@
 // prep evaluate: runs scenarios headless with their auto launches under each method (ours, linear, naive)
 // and prints the measures of engine/world/evaluation.h: a text table, JSON, or the README's markdown tables;
 // optionally a PNG plot per scenario of the user's alpha over time, one line per method.
+// prep evaluate --random N --seed S: N random courses (engine/world/courses.h) instead, run with our method
+// on both cores, and the measures of engine/world/course_evaluation.h per course, in total, and as
+// pass/fail acceptance checks.
 #include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <map>
 #include <memory>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "app/cli/command.h"
 #include "engine/control/action_effects.h"
 #include "engine/util/error.h"
+#include "engine/util/files.h"
 #include "engine/util/plot.h"
+#include "engine/world/course_evaluation.h"
+#include "engine/world/courses.h"
 #include "engine/world/evaluation.h"
 #include "engine/world/policy_cache.h"
 #include "engine/world/world.h"
@@ -28,6 +37,11 @@ struct Options {
   std::string motions, params, cache, plot_dir;
   float seconds = 60.0f;
   bool json = false, markdown = false;
+  bool random_given = false;  // --random N: N random courses instead of --scenario
+  int random = 0;
+  std::uint64_t seed = 1;
+  int threads = 0;  // 0: one per core
+  std::string save_courses;  // folder to write the random courses to as scenario files
 };
 
 std::string fixed(double v, int decimals) {
@@ -192,7 +206,123 @@ std::string file_stem(const std::string& s) {
   return out;
 }
 
+// --- Random courses ----------------------------------------------------------------------------------------
+
+// The Params file random courses run with: --params (made absolute, so that a course saved as a scenario
+// file finds it from its own folder), else for a manifest the controller its shipped scenarios name
+// (assets/scenarios/controller_<manifest name>.json) if there is one; "" for the defaults.
+std::string random_params_file(const Options& o, const std::string& motions) {
+  if (!o.params.empty()) return std::filesystem::absolute(o.params).string();
+  if (motions == "builtin") return "";
+  const std::string controller =
+      prep::source_dir() + "/assets/scenarios/controller_" + std::filesystem::path(motions).stem().string() + ".json";
+  return std::filesystem::exists(controller) ? controller : "";
+}
+
+std::string launch_cells(const prep::CourseEvaluation& e) {
+  std::string out;
+  for (const prep::CourseLaunch& l : e.launches)
+    out += (out.empty() ? "" : ", ") + std::string(prep::target_action_name(l.action)) + " " + fixed(l.alpha_at_launch, 2) + "/" +
+           (l.alpha_at_1m >= 0.0f ? fixed(l.alpha_at_1m, 2) : std::string("-"));
+  return out.empty() ? "none" : out;
+}
+
+std::string course_text(const prep::CourseEvaluation& e) {
+  std::ostringstream o;
+  float kept = NAN;
+  for (const prep::KeptPreparation& k : e.kept) kept = std::isnan(kept) ? k.min_alpha : std::min(kept, k.min_alpha);
+  float relax = NAN;
+  for (float r : e.relax_times) relax = std::isnan(relax) ? r : std::max(relax, r);
+  o << e.name << ": " << e.description << "\n"
+    << "  goal " << (e.reached_goal ? "yes, " + fixed(e.goal_time, 2) + " s" : "no") << " (run " << fixed(e.seconds, 1)
+    << " s, route " << fixed(e.route_length, 1) << " m)  path ratio " << fixed(e.path_ratio, 3) << "  objects left "
+    << e.objects_unused << "/" << e.objects << "\n"
+    << "  launches (alpha at launch/at 1 m): " << launch_cells(e) << "\n"
+    << "  kept preparation min " << fixed(kept, 2) << " (" << e.kept.size() << " close pairs)  no-source alpha median "
+    << fixed(e.no_source_median(), 3) << " mean " << fixed(e.no_source_mean(), 3) << "  relax max " << fixed(relax, 2) << " s ("
+    << e.unrelaxed_episodes << " unrelaxed)  circling " << fixed(e.circling_seconds, 1) << " s (largest turn near a goal "
+    << fixed(e.max_visit_turn_deg, 0) << " deg)\n";
+  return o.str();
+}
+
+std::string totals_text(const prep::CourseTotals& t) {
+  std::ostringstream o;
+  auto pct = [](int part, int whole) { return whole > 0 ? fixed(100.0 * part / whole, 1) + "%" : std::string("-"); };
+  auto line = [&o](const std::string& label, const std::string& value) {
+    char b[48];
+    std::snprintf(b, sizeof b, "  %-29s", label.c_str());
+    o << b << value << "\n";
+  };
+  o << "total over " << t.courses << " courses:\n";
+  line("goal reached", std::to_string(t.goals) + "/" + std::to_string(t.courses) + " (" + pct(t.goals, t.courses) + ")");
+  line("alpha at launch >= " + fixed(prep::course_metric::kLaunchAlpha, 2),
+       std::to_string(t.launches_prepared) + "/" + std::to_string(t.launches) + " launches (" + pct(t.launches_prepared, t.launches) + ")");
+  line("alpha at 1 m >= " + fixed(prep::course_metric::kAlpha1m, 2),
+       std::to_string(t.prepared_1m) + "/" + std::to_string(t.measured_1m) + " measured (" + pct(t.prepared_1m, t.measured_1m) + ")");
+  line("objects never acted on", std::to_string(t.objects_unused) + "/" + std::to_string(t.objects));
+  line("path ratio", "median " + fixed(t.path_median, 3) + ", p95 " + fixed(t.path_p95, 3));
+  line("alpha, no source in range", "median " + fixed(t.no_source_median, 3) + ", mean " + fixed(t.no_source_mean, 3));
+  line("relaxing below 0.1", "median " + fixed(t.relax_median, 2) + " s, max " + fixed(t.relax_max, 2) + " s (" +
+                                 std::to_string(t.unrelaxed_episodes) + " episodes ended unrelaxed)");
+  line("kept preparation (< 3 m)", std::to_string(t.kept_pairs) + " pairs, lowest alpha min " + fixed(t.kept_min, 2) +
+                                       ", median " + fixed(t.kept_median, 2));
+  line("circling", std::to_string(t.circling_courses) + " courses (" + fixed(t.circling_seconds, 1) + " s)");
+  o << "checks:\n";
+  for (const prep::CourseCheck& c : t.checks) o << "  " << (c.pass ? "pass" : "FAIL") << "  " << c.name << ": " << c.measure << "\n";
+  o << (t.pass() ? "all checks pass\n" : "some checks fail\n");
+  return o.str();
+}
+
+void run_random(const Options& o) {
+  if (o.random <= 0) throw std::invalid_argument("--random must be a positive number of courses (got " + std::to_string(o.random) + ")");
+  const std::string motions = o.motions.empty() ? "builtin" : o.motions;
+  if (motions != "builtin") {
+    const std::string path = motions.front() == '/' ? motions : prep::source_dir() + "/" + motions;
+    if (!std::filesystem::is_regular_file(path))
+      throw prep::InputError("--motions", "no motion set '" + motions + "' (\"builtin\" or a manifest path)");
+  }
+  prep::CourseOptions options;
+  options.seed = o.seed;
+  options.motions = motions;
+  options.params_file = random_params_file(o, motions);
+  prep::Scenario probe;  // what the courses share: their motion set and Params
+  probe.motions = options.motions;
+  probe.params_file = options.params_file;
+  const prep::Params params = prep::load_scenario_params(probe);
+  const std::string cache = o.cache.empty() ? prep::default_policy_cache_dir() : o.cache;
+  bool trained = false;
+  const auto assets = prep::prepare_world_assets(probe, params, cache, &trained);
+  if (!o.json && trained) std::cerr << "trained a policy for " << assets->set->name << " (cached in " << cache << ")\n";
+  options.actions = prep::actions_of(*assets);
+  const std::vector<prep::Scenario> courses = prep::make_courses(options, o.random);
+  if (!o.save_courses.empty()) {
+    std::filesystem::create_directories(o.save_courses);
+    for (const prep::Scenario& s : courses)
+      prep::write_file_atomic((std::filesystem::path(o.save_courses) / (s.name + ".json")).string(), prep::scenario_json(s));
+  }
+  const int threads = o.threads > 0 ? o.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const std::vector<prep::CourseEvaluation> runs = prep::evaluate_courses(courses, assets, threads);
+  const prep::CourseTotals totals = prep::course_totals(runs);
+  if (o.json) {
+    nlohmann::json j;
+    j["seed"] = o.seed;
+    j["motions"] = assets->set->name;
+    j["params"] = options.params_file.empty() ? nlohmann::json(nullptr) : nlohmann::json(options.params_file);
+    j["courses"] = nlohmann::json::array();
+    for (const prep::CourseEvaluation& e : runs) j["courses"].push_back(prep::course_json(e));
+    j["total"] = prep::course_totals_json(totals);
+    std::cout << j.dump(2) << "\n";
+    return;
+  }
+  std::cout << o.random << " random courses, seed " << o.seed << ", motions " << assets->set->name
+            << (options.params_file.empty() ? "" : ", params " + options.params_file) << "\n";
+  for (const prep::CourseEvaluation& e : runs) std::cout << course_text(e);
+  std::cout << totals_text(totals);
+}
+
 void run(const Options& o) {
+  if (o.random_given) return run_random(o);
+  if (o.scenarios.empty()) throw std::invalid_argument("give --scenario FILE (or --random N for random courses)");
   std::vector<prep::EvaluationMethod> methods;
   for (const std::string& name : o.methods) {
     const auto m = prep::parse_method(name);
@@ -253,20 +383,37 @@ void run(const Options& o) {
 prep::cli::RegisterCommand evaluate_command(
     "evaluate",
     "Measure a scenario's motion under ours / linear / naive: goal, per launch alpha, preparation lead and peak "
-    "deceleration, foot skate, COM in support, pose plausibility, synthesis time (issue 9)",
+    "deceleration, foot skate, COM in support, pose plausibility, synthesis time; or, with --random N, "
+    "N random courses with acceptance checks",
     45, [](CLI::App& app) {
       auto o = std::make_shared<Options>();
-      app.add_option("--scenario", o->scenarios, "Scenario JSON (repeat for several)")->required();
-      app.add_option("--method", o->methods, "ours, linear or naive (repeat or comma-separate; default all three)")
-          ->delimiter(',');
+      auto* scenario = app.add_option("--scenario", o->scenarios, "Scenario JSON (repeat for several)");
+      auto* method = app.add_option("--method", o->methods, "ours, linear or naive (repeat or comma-separate; default all three)")
+                         ->delimiter(',');
+      auto* random = app.add_option("--random", o->random,
+                                    "Run N random courses (engine/world/courses.h) with our method instead of --scenario");
+      app.add_option("--seed", o->seed, "Seed of the random courses (default 1): course k of a seed is always the same")
+          ->needs(random);
+      app.add_option("--threads", o->threads, "Random courses run on this many threads (default: one per core)")
+          ->check(CLI::Range(0, 256))
+          ->needs(random);
+      app.add_option("--save-courses", o->save_courses,
+                     "Also write each random course to DIR/random-<seed>-<k>.json (a scenario for prep run or prep-demo)")
+          ->needs(random);
       app.add_option("--motions", o->motions, "Motion set instead of the scenario's (\"builtin\" or a manifest path)");
-      app.add_option("--params", o->params, "Params JSON (default: the scenario's \"params\", else the defaults)");
-      app.add_option("--seconds", o->seconds, "Longest run (s, default 60); a run ends 1 s after the goal is reached");
+      app.add_option("--params", o->params,
+                     "Params JSON (default: the scenario's \"params\", else the defaults; random courses on a manifest "
+                     "M.json: assets/scenarios/controller_M.json if there is one)");
+      auto* seconds = app.add_option("--seconds", o->seconds, "Longest run (s, default 60); a run ends 1 s after the goal is reached");
       app.add_option("--policy-cache", o->cache, "Folder of cached policies (default: $PREP_CACHE_DIR or ~/.cache/prep)");
-      app.add_option("--plot-dir", o->plot_dir, "Write DIR/alpha_<scenario>.png: the user's alpha over time per method");
+      auto* plot = app.add_option("--plot-dir", o->plot_dir, "Write DIR/alpha_<scenario>.png: the user's alpha over time per method");
       auto* json = app.add_flag("--json", o->json, "Print JSON: one run's object, or an array of them");
-      app.add_flag("--markdown", o->markdown, "Print the results and acceptance tables in markdown")->excludes(json);
-      app.callback([o] { run(*o); });
+      auto* markdown = app.add_flag("--markdown", o->markdown, "Print the results and acceptance tables in markdown")->excludes(json);
+      random->excludes(scenario)->excludes(method)->excludes(seconds)->excludes(plot)->excludes(markdown);
+      app.callback([o, random] {
+        o->random_given = random->count() > 0;
+        run(*o);
+      });
     });
 
 }  // namespace

@@ -259,4 +259,34 @@ Scenario parse_scenario(const std::string& text, const std::string& source_name)
 
 Scenario load_scenario(const std::string& path) { return parse_scenario(read_file(path), path); }
 
+std::string scenario_json(const Scenario& s) {
+  auto point = [](glm::vec2 p) { return json::array({p.x, p.y}); };
+  json j;
+  j["name"] = s.name;
+  if (!s.description.empty()) j["description"] = s.description;
+  j["auto"] = s.auto_launch;
+  j["motions"] = s.motions;
+  if (!s.params_file.empty()) j["params"] = s.params_file;
+  j["characters"] = json::array();
+  for (const ScenarioCharacter& c : s.characters) {
+    json cj = {{"position", point(c.position)}, {"heading", c.heading / kDegrees}, {"control", control_name(c.control)}};
+    if (c.control == Control::Opponent) cj["action"] = target_action_name(c.action);
+    j["characters"].push_back(cj);
+  }
+  j["objects"] = json::array();
+  for (const ScenarioObject& o : s.objects) {
+    json oj = {{"type", object_type_name(o.type)}, {"action", target_action_name(o.action)}, {"position", point(o.position)},
+               {"heading", o.heading / kDegrees}};
+    if (o.type != ObjectType::Opponent) oj["size"] = {o.size.x, o.size.y, o.size.z};
+    j["objects"].push_back(oj);
+  }
+  if (s.goal.size() == 1) {
+    j["goal"] = point(s.goal.front());
+  } else {
+    j["goal"] = json::array();
+    for (glm::vec2 g : s.goal) j["goal"].push_back(point(g));
+  }
+  return j.dump(2) + "\n";
+}
+
 }  // namespace prep

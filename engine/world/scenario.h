@@ -89,5 +89,8 @@ struct Scenario {
 // Parses scenario JSON text; `source_name` names it in errors and resolves the relative "params" path.
 Scenario parse_scenario(const std::string& text, const std::string& source_name);
 Scenario load_scenario(const std::string& path);
+// The scenario as JSON text that parse_scenario reads back to the same scenario (headings in degrees, so
+// within rounding; the "params" path as resolved).
+std::string scenario_json(const Scenario& scenario);
 
 }  // namespace prep

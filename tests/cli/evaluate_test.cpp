@@ -105,3 +105,46 @@ TEST_CASE("prep evaluate refuses an unknown method and names a missing scenario 
   CHECK_THROWS_WITH_AS(run_evaluate({"--scenario", kKick, "--method", "fancy"}), doctest::Contains("--method"), InputError);
   CHECK_THROWS_WITH_AS(run_evaluate({"--scenario", "/nonexistent/s.json"}), doctest::Contains("/nonexistent/s.json"), InputError);
 }
+
+TEST_CASE("prep evaluate --random --json: the courses, the total and a pass/fail per acceptance check") {
+  const nlohmann::json j = nlohmann::json::parse(run_evaluate({"--random", "2", "--seed", "4", "--json"}));
+  CHECK(j["seed"] == 4);
+  CHECK(j["motions"] == "builtin");
+  REQUIRE(j["courses"].size() == 2);
+  CHECK(j["courses"][0]["name"] == "random-4-0");
+  CHECK(j["courses"][1]["name"] == "random-4-1");
+  for (const auto& c : j["courses"]) {
+    CAPTURE(c.dump());
+    CHECK(c["reached_goal"].is_boolean());
+    CHECK(c["route_length_m"].get<double>() > 0.0);
+    CHECK(c["launches"].is_array());
+    CHECK(c["circling"]["seconds"].is_number());
+  }
+  const nlohmann::json& t = j["total"];
+  CHECK(t["courses"] == 2);
+  REQUIRE(t["checks"].is_object());
+  bool all = true;
+  for (const char* name : {"goal_reached", "alpha_at_launch", "alpha_at_1m", "path_ratio", "no_source_alpha", "circling"}) {
+    CAPTURE(name);
+    REQUIRE(t["checks"].contains(name));
+    CHECK(t["checks"][name]["pass"].is_boolean());
+    CHECK(t["checks"][name]["measure"].is_string());
+    all = all && t["checks"][name]["pass"].get<bool>();
+  }
+  CHECK(t["checks"].size() == 6);
+  CHECK(t["pass"] == all);
+}
+
+TEST_CASE("prep evaluate --random: text with the checks, and bad counts, motion sets and combinations refused") {
+  const std::string text = run_evaluate({"--random", "1", "--seed", "4"});
+  CHECK(text.find("random-4-0") != std::string::npos);
+  CHECK(text.find("checks:") != std::string::npos);
+  CHECK(text.find("goal_reached: ") != std::string::npos);
+  CHECK(text.find("circling: ") != std::string::npos);
+  CHECK_THROWS_WITH_AS(run_evaluate({"--random", "0"}), doctest::Contains("--random must be a positive number"), std::invalid_argument);
+  CHECK_THROWS_WITH_AS(run_evaluate({"--random", "-2"}), doctest::Contains("--random must be a positive number"), std::invalid_argument);
+  CHECK_THROWS_WITH_AS(run_evaluate({"--random", "2", "--motions", "nosuch.json"}), doctest::Contains("nosuch.json"), InputError);
+  CHECK_THROWS_AS(run_evaluate({"--random", "2", "--scenario", kKick}), CLI::ExcludesError);
+  CHECK_THROWS_AS(run_evaluate({"--seed", "3", "--scenario", kKick}), CLI::RequiresError);
+  CHECK_THROWS_WITH_AS(run_evaluate({"--json"}), doctest::Contains("--scenario"), std::invalid_argument);
+}

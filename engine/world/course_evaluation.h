@@ -1,0 +1,213 @@
+// Measures of a run over a course (courses.h, or any scenario), observed tick by tick from the World, and
+// their totals over many courses with the acceptance checks of prep evaluate --random.
+//
+// Per course (the user character only):
+// - goal: reached, and when (s).
+// - Per launch of the user: alpha at the launch and alpha when its launch point first came within 1 m
+//   (LaunchRecord::alpha_at_launch, alpha_at_1m; the latter is -1, not measured, when the approach began
+//   closer than 1 m, e.g. out of the previous object's clip). Objects never acted on (an object not used, an
+//   opponent not defeated) are counted.
+// - Kept preparation: for two consecutive launches of the user at things less than kKeptDistance apart
+//   (the objects' positions, or the opponents' where they stood, at each launch), the lowest smoothed
+//   alpha (WorldCharacter::alpha) on the ticks strictly between the two launch ticks.
+// - Alpha with no source in range: on the ticks where the user is not in a target motion and its source
+//   is not in range (WorldCharacter::source_in_range false), the mean and median of its alpha. An episode
+//   of these begins when the user comes out of range or out of a target motion; its relaxation time is
+//   from there until alpha is below kRelaxedAlpha (0 if it already is). An episode that ends (a source
+//   comes in range, or the run ends) before that has no time and is counted as unrelaxed. The first
+//   stretch of the run, before any source was in range, is no episode: nothing was there to relax from.
+// - Path ratio: the length of the user's root path on the floor up to the tick the goal is reached,
+//   over the straight route (start -> each waypoint -> goal) less the goal radius (the goal counts as
+//   reached on its edge, so walking straight in measures at least 1). Waypoints passed at a distance can
+//   make it slightly below 1. Undefined (NaN) when the goal is not reached.
+// - Circling: a visit to the current waypoint or goal (the last goal after it is reached) begins when the
+//   user comes within kCirclingRadius of it and ends when the user is farther than kCirclingLeave from it
+//   or it changes (a waypoint passed): a character orbiting on the edge of the circle, in and out of it
+//   (seen at waypoints after a fight), makes one visit, not many short ones. The |heading change| of the
+//   ticks of a visit is summed, and a visit whose sum exceeds 360 degrees counts as circling: the seconds
+//   of such visits. The heading is averaged over the last kHeadingWindow seconds first: the pelvis (the
+//   root) swings its yaw a few degrees either way in every stride, some 15 degrees a second summed while
+//   walking straight, which over a long visit would add up to a circle that is not there.
+// A run (evaluate_course) lasts until the goal is reached and no character plays a target motion, plus
+// kRelaxSeconds (relaxing at the goal is measured), and at most kBaseSeconds + kSecondsPerMetre per metre
+// of straight route.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <nlohmann/json.hpp>
+
+#include "engine/world/scenario.h"
+#include "engine/world/world.h"
+
+namespace prep {
+
+// The constants that define the measures and the acceptance (fixed, like metric:: in evaluation.h).
+namespace course_metric {
+constexpr float kKeptDistance = 3.0f;      // m: two launches this close keep preparation between them
+constexpr float kRelaxedAlpha = 0.1f;      // alpha below this is relaxed
+constexpr float kCirclingRadius = 2.0f;    // m around the current waypoint or goal: a visit begins within ...
+constexpr float kCirclingLeave = 3.0f;     // m: ... and ends beyond this
+constexpr float kCirclingTurnDeg = 360.0f; // a visit turning more than this is circling
+constexpr float kHeadingWindow = 1.0f;     // s: the heading is averaged over this (about a gait cycle)
+constexpr float kRelaxSeconds = 2.5f;      // s a run goes on after the goal and the last target motion
+constexpr float kBaseSeconds = 12.0f;      // s: the longest run is this ...
+constexpr float kSecondsPerMetre = 2.5f;   // ... plus this per metre of straight route
+constexpr float kLaunchAlpha = 0.85f;      // acceptance: alpha at launch at least this ...
+constexpr float kLaunchFraction = 0.95f;   // ... on this fraction of the launches
+constexpr float kAlpha1m = 0.5f;           // alpha 1 m before the launch point at least this ...
+constexpr float kAlpha1mFraction = 0.90f;  // ... on this fraction of the launches where it was measured
+constexpr float kGoalFraction = 0.98f;     // goal reached on this fraction of the courses
+constexpr float kPathMedian = 1.15f;       // path ratio median at most this ...
+constexpr float kPathP95 = 1.5f;           // ... and its 95th percentile at most this
+constexpr float kNoSourceMedian = 0.1f;    // median alpha with no source in range at most this
+}  // namespace course_metric
+
+struct CourseLaunch {
+  TargetAction action = TargetAction::Kick;
+  float time = 0;             // s
+  int tick = 0;               // observed frame (index into CourseEvaluation::alpha)
+  int object = -1;            // the object, or
+  int target_character = -1;  // the opponent character, launched at (-1: none)
+  glm::vec2 at{0.0f};         // where that stood at the launch (the user's position when neither)
+  float alpha_at_launch = 0;
+  float alpha_at_1m = -1;     // -1: not measured
+};
+
+struct KeptPreparation {
+  int first = 0, second = 0;  // indices into CourseEvaluation::launches
+  float distance = 0;         // m between what they were launched at
+  float min_alpha = 0;        // the lowest alpha between the two launch ticks (exclusive)
+};
+
+struct CourseEvaluation {
+  std::string name, description;
+  float seconds = 0;                 // run length
+  bool reached_goal = false;
+  float goal_time = -1;              // s; -1 when not reached
+  float route_length = 0;            // m: start -> waypoints -> goal
+  float path_length = 0;             // m: walked until the goal was reached (or the run ended)
+  float path_ratio = 0;              // NaN when the goal was not reached
+  int objects = 0, objects_unused = 0;
+  std::vector<CourseLaunch> launches;         // the user's, in order
+  std::vector<KeptPreparation> kept;
+  std::vector<float> no_source_alpha;         // the user's alpha on every tick with no source in range
+  std::vector<float> relax_times;             // s, per episode that relaxed
+  int unrelaxed_episodes = 0;
+  float circling_seconds = 0;
+  int circling_visits = 0;
+  float max_visit_turn_deg = 0;               // the largest turn of any visit
+  std::vector<float> times, alpha;            // the user's smoothed alpha per observed frame
+
+  float no_source_mean() const;    // NaN without such ticks
+  float no_source_median() const;
+};
+
+// Alpha with no source in range on its own (above), fed one tick at a time: whether the user is out of
+// range (no source in range and not in a target motion) and its alpha.
+class NoSourceMeter {
+ public:
+  NoSourceMeter(bool out, float alpha);  // the first tick
+  void add(float time, bool out, float alpha);
+  void finish();  // an episode under way ends unrelaxed
+  const std::vector<float>& alpha() const { return alpha_; }       // on the ticks out of range
+  const std::vector<float>& relax_times() const { return relax_; }  // s, per episode that relaxed
+  int unrelaxed() const { return unrelaxed_; }
+
+ private:
+  std::vector<float> alpha_, relax_;
+  int unrelaxed_ = 0;
+  bool was_out_;
+  bool in_episode_ = false;  // an episode has not relaxed yet
+  float episode_start_ = 0;
+};
+
+// The circling measure on its own (above), fed one tick at a time.
+class CirclingMeter {
+ public:
+  CirclingMeter(float dt, float heading);  // the first tick's heading (radians)
+  // One tick: the user's position and heading (radians, as the world gives it) and its current goal
+  // point (`goal_index` tells one from the next).
+  void add(glm::vec2 position, float heading, int goal_index, glm::vec2 goal_point);
+  void finish();                                        // ends a visit under way
+  float seconds() const { return seconds_; }            // of the visits that circled
+  int visits() const { return visits_; }                // that circled
+  float max_turn_deg() const { return max_turn_deg_; }  // the largest turn of any visit
+
+ private:
+  float dt_;
+  float last_heading_;         // as given last tick
+  float heading_;              // unwrapped (continuous over turns)
+  std::vector<float> window_;  // the unwrapped heading over the last kHeadingWindow of ticks (a ring) ...
+  size_t next_ = 0;
+  double sum_;                 // ... their sum
+  float smoothed_;             // ... and their mean
+  int visit_goal_ = -1;        // the goal point of the visit under way, -1: none
+  float visit_turn_ = 0;       // radians turned in it so far
+  int visit_ticks_ = 0;
+  float seconds_ = 0, max_turn_deg_ = 0;
+  int visits_ = 0;
+};
+
+class CourseRecorder {
+ public:
+  explicit CourseRecorder(const World& world);  // the world's current state is the first frame
+  void observe(const World& world);             // after every World::step()
+  CourseEvaluation finish(const World& world) const;
+
+ private:
+  CourseEvaluation e_;
+  size_t launches_seen_ = 0;
+  glm::vec2 last_position_{0.0f};
+  NoSourceMeter no_source_;
+  CirclingMeter circling_;
+};
+
+// The longest run for a course (the header's limit), s.
+float course_time_limit(const Scenario& scenario);
+// Runs the course headless with auto launches until the end condition above.
+CourseEvaluation evaluate_course(const Scenario& scenario, std::shared_ptr<const WorldAssets> assets);
+// Runs every course on up to `threads` threads (a World per course, the assets shared read-only); the
+// results are in the courses' order whatever the threads.
+std::vector<CourseEvaluation> evaluate_courses(const std::vector<Scenario>& courses, std::shared_ptr<const WorldAssets> assets,
+                                               int threads);
+
+// --- Totals over courses ------------------------------------------------------------------------------
+
+// Percentile p (0-100) with linear interpolation between the closest ranks; NaN for no values.
+float percentile(std::vector<float> values, float p);
+
+struct CourseCheck {
+  std::string name;     // "goal reached", ...
+  std::string measure;  // what was measured, in words with the figure
+  bool pass = false;
+};
+
+struct CourseTotals {
+  int courses = 0, goals = 0;
+  int launches = 0, launches_prepared = 0;   // alpha at launch >= kLaunchAlpha
+  int measured_1m = 0, prepared_1m = 0;      // alpha at 1 m measured, and >= kAlpha1m
+  int objects = 0, objects_unused = 0;
+  float path_median = 0, path_p95 = 0;       // over the courses that reached the goal
+  float no_source_median = 0, no_source_mean = 0;  // over every no-source tick of every course
+  float relax_median = 0, relax_max = 0;     // over every relaxed episode
+  int unrelaxed_episodes = 0;
+  int circling_courses = 0;
+  float circling_seconds = 0;
+  int kept_pairs = 0;
+  float kept_min = 0, kept_median = 0;       // of the pairs' minima (NaN without pairs)
+  std::vector<CourseCheck> checks;
+  bool pass() const;
+};
+
+CourseTotals course_totals(const std::vector<CourseEvaluation>& courses);
+
+// JSON: {"courses": [per course], "total": {..., "checks": {"<name>": {"pass", "measure"}}, "pass"}}.
+nlohmann::json course_json(const CourseEvaluation& e);
+nlohmann::json course_totals_json(const CourseTotals& t);
+
+}  // namespace prep
