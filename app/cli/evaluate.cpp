@@ -294,6 +294,7 @@ void run_random(const Options& o) {
   const auto assets = prep::prepare_world_assets(probe, params, cache, &trained);
   if (!o.json && trained) std::cerr << "trained a policy for " << assets->set->name << " (cached in " << cache << ")\n";
   options.actions = prep::actions_of(*assets);
+  options.reach = prep::reaches_of(*assets);
   const std::vector<prep::Scenario> courses = prep::make_courses(options, o.random);
   if (!o.save_courses.empty()) {
     std::filesystem::create_directories(o.save_courses);

@@ -47,7 +47,6 @@ Controller::Controller(std::shared_ptr<const Policy> policy, const Params& param
       goal_radius_(params.reward.goal_radius),
       source_radius_(params.reward.source_radius) {
   filter_.reset(0.0f);
-  for (int m = 0; m < actions_.motions(); ++m) level0_mask_ |= std::uint64_t{1} << actions_.index({m, 0});
 }
 
 void Controller::reset(int motion, int alpha_level) {
@@ -70,7 +69,6 @@ ControlDecision Controller::decide(const ControlInput& in) {
     // Training ends an episode on entering the goal radius, so the policy never learned anything inside
     // it (its Q values there are untouched): the character carries on with the action it plays (for a
     // goal that is also the launch point, until the arrival stops it there, arrival.h).
-    if (in.relax) alpha_level_ = 0;
     d.action = actions_.index({motion_, alpha_level_});
     d.motion = motion_;
     d.alpha_level = alpha_level_;
@@ -90,8 +88,7 @@ ControlDecision Controller::decide(const ControlInput& in) {
   b.theta_i = states_.theta_i_bin(s.theta_i);
   d.state = states_.index(b);
   // Greedy over the actions Next(last motion) allows (lowest index on ties, as in training).
-  std::uint64_t allowed = actions_.allowed_mask(motion_);
-  if (in.relax && (allowed & level0_mask_)) allowed &= level0_mask_;
+  const std::uint64_t allowed = actions_.allowed_mask(motion_);
   const float* row = policy_->row(d.state);
   int best = -1;
   for (int a = 0; a < actions_.size(); ++a)

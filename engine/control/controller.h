@@ -56,10 +56,6 @@ struct ControlInput {
   float heading = 0.0f;  // the character faces (sin h, 0, cos h)
   glm::vec2 goal{0.0f};
   glm::vec2 source{0.0f};
-  // No source calls for preparation (RuntimeParams::relax_without_source): the greedy choice is taken
-  // among the level-0 actions only, and at the goal the kept action drops to level 0. Beyond the paper,
-  // whose Eq. 14-17 never lower alpha when nothing is near.
-  bool relax = false;
 };
 
 struct ControlDecision {
@@ -79,7 +75,12 @@ class Controller {
   // The greedy action in the current situation; updates the state's alpha (Eq. 13) and last motion.
   ControlDecision decide(const ControlInput& in);
   // One engine tick (RuntimeParams::fixed_dt): the filtered alpha for synthesis (1 is played once arrived).
-  float tick() { return filter_.push(arrived_ ? 1.0f : alpha_of_level(alpha_level_)); }
+  // Relaxed (no source calls for preparation, RuntimeParams::relax_without_source), 0 is played whatever
+  // the level: the policy and its state are the paper's, only what synthesis plays relaxes. Beyond the
+  // paper, whose Eq. 14-17 never lower alpha when nothing is near (Eq. 16 only penalises change).
+  float tick(bool relaxed = false) {
+    return filter_.push(arrived_ ? 1.0f : relaxed ? 0.0f : alpha_of_level(alpha_level_));
+  }
   float filtered_alpha() const { return filter_.value(); }
   // Arrival at the launch point (arrival.h): the played alpha is forced to 1 and the state's alpha is the
   // top level until set_arrived(false).
@@ -99,7 +100,6 @@ class Controller {
   std::shared_ptr<const Policy> policy_;
   StateSpace states_;
   ActionSpace actions_;
-  std::uint64_t level0_mask_ = 0;  // the actions at alpha level 0 (relaxed choices)
   AlphaFilter filter_;
   float goal_radius_, source_radius_;
   int motion_ = 0, alpha_level_ = 0;

@@ -196,7 +196,13 @@ bool draw_course(const CourseOptions& o, Random& rng, Scenario& s) {
     const Item item = items[i];
     float gap;
     if (i == 0) {
-      gap = item == Item::Opponent ? rng.uniform(4.0f, 7.0f) : rng.uniform(3.0f, 6.0f);
+      const TargetAction action = item == Item::Ball  ? TargetAction::Kick
+                                  : item == Item::Bar ? TargetAction::Crawl
+                                  : item == Item::Beam ? TargetAction::Duck
+                                                       : TargetAction::Jump;
+      const size_t a = static_cast<size_t>(action);
+      const float reach = a < o.reach.size() ? std::max(0.0f, o.reach[a]) : 0.0f;
+      gap = item == Item::Opponent ? rng.uniform(4.0f, 7.0f) : rng.uniform(3.0f, 6.0f) + reach;
     } else {
       const float r = rng.uniform(0.0f, 1.0f);
       gap = r < 0.35f ? rng.uniform(1.5f, 3.0f) : r < 0.75f ? rng.uniform(3.0f, 6.0f) : rng.uniform(6.0f, 10.0f);
@@ -258,6 +264,12 @@ std::string describe(const Scenario& s, const CourseOptions& o, int index) {
 }
 
 }  // namespace
+
+std::vector<float> reaches_of(const WorldAssets& assets) {
+  std::vector<float> reach;
+  for (const TargetMotion& t : assets.targets) reach.push_back(t.reach);
+  return reach;
+}
 
 std::vector<TargetAction> actions_of(const WorldAssets& assets) {
   std::vector<TargetAction> out;

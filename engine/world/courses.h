@@ -15,8 +15,9 @@
 //   opponent walks in to attack at once and, while one still fights, it is the user's source of influence
 //   whatever else lies on the way (world.h): an obstacle before it would be walked through unprepared.
 // - Then 1-4 other objects (0-3 after a fight), each kind equally likely among those the set can act on:
-//   ball (kick), bar (crawl), beam (duck), hurdle (jump). The first object of a course is U(3, 6) m
-//   along the route from the start; from one object to the next along the route: close U(1.5, 3) m (35%),
+//   ball (kick), bar (crawl), beam (duck), hurdle (jump). The first object's launch point (where its clip,
+//   entered at T_p, starts: CourseOptions::reach before it) is U(3, 6) m along the route from the start,
+//   the room a character needs to prepare from standing; from one object to the next along the route: close U(1.5, 3) m (35%),
 //   medium U(3, 6) m (40%) or far U(6, 10) m (25%).
 // - Sizes are those the built-in clips were made for (library::obstacle_of: the height of a bar's or
 //   beam's underside or a hurdle's top, and its depth); a ball is 0.22 m across. Width: U(4.5, 6) m, the
@@ -53,10 +54,15 @@ struct CourseOptions {
   // The target actions the motion set can act on (actions_of): object kinds needing any other are left out.
   std::vector<TargetAction> actions{TargetAction::Kick,  TargetAction::Crawl,     TargetAction::Duck,
                                     TargetAction::Jump,  TargetAction::PunchLeft, TargetAction::PunchRight};
+  // m from each target action's launch point to its object (TargetMotion::reach, by TargetAction; reaches_of);
+  // empty: 0 for every action.
+  std::vector<float> reach;
 };
 
 // The target actions a world's motion set has a clip for (TargetMotion::clip >= 0).
 std::vector<TargetAction> actions_of(const WorldAssets& assets);
+// Each target action's reach (TargetMotion::reach), indexed by TargetAction.
+std::vector<float> reaches_of(const WorldAssets& assets);
 
 // Course `index` (0-based) of the options' seed, named "random-<seed>-<index>". Throws std::invalid_argument
 // when the options allow no object kind at all.

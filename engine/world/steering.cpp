@@ -28,10 +28,13 @@ bool inside_turning_circle(glm::vec2 position, float heading, glm::vec2 goal, fl
 
 TightTurn tight_turn(glm::vec2 position, float heading, glm::vec2 goal, float turning_radius, float max_rate) {
   TightTurn t;
-  if (max_rate <= 0.0f || !inside_turning_circle(position, heading, goal, turning_radius)) return t;
+  if (max_rate <= 0.0f) return t;
   const float b = bearing_to(position, heading, goal);
+  const bool inside = inside_turning_circle(position, heading, goal, turning_radius);
+  const bool near = glm::length(goal - position) < kNearGoal && std::fabs(b) > kNearBearing;
+  if (!inside && !near) return t;
   t.rate = std::clamp(b / kTightTurnTime, -max_rate, max_rate);
-  t.stride = std::max(kTightStride, std::cos(std::min(std::fabs(b), 0.5f * kPi)));
+  if (inside) t.stride = std::max(kTightStride, std::cos(std::min(std::fabs(b), 0.5f * kPi)));
   return t;
 }
 

@@ -28,6 +28,11 @@ namespace prep {
 constexpr float kTightTurnTime = 0.4f;  // s: the tight turn faces the goal in about this time
 constexpr float kTightStride = 0.3f;    // the shortest stride, as a fraction of the clip's
 constexpr float kStrideTime = 0.2f;     // s: time constant of the stride scale
+// Near a goal the heading is also corrected toward it (without shortening the stride) when it is off by
+// more than kNearBearing: the policy's bearings are quantized in 45 degree bins (Table I), so left to
+// itself it walks up to about 22 degrees off a goal close ahead and weaves onto it.
+constexpr float kNearGoal = 3.0f;                          // m
+constexpr float kNearBearing = 10.0f * 3.14159265f / 180;  // rad
 
 // Signed bearing (rad, in (-pi, pi], positive toward +X from a heading of 0) of `target` seen from
 // `position` facing `heading` (a character at heading h faces (sin h, cos h) on the floor).
@@ -40,7 +45,8 @@ struct TightTurn {
   float rate = 0.0f;    // rad/s of extra heading (the sign of the bearing)
   float stride = 1.0f;  // target stride scale
 };
-// The tight turn toward `goal`: none (rate 0, stride 1) unless the goal is inside the turning circle.
+// The tight turn toward `goal`: none (rate 0, stride 1) unless the goal is inside the turning circle, or
+// nearer than kNearGoal and off by more than kNearBearing (then the heading only).
 TightTurn tight_turn(glm::vec2 position, float heading, glm::vec2 goal, float turning_radius, float max_rate);
 
 // A waypoint the character goes by: within `pass_radius` of it and no longer ahead (it lies behind the

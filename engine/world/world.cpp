@@ -114,6 +114,11 @@ float fastest_level0_turn(const ActionTable& table) {
   return rate;
 }
 
+constexpr float kMinApproachSpeed = 0.5f;  // m/s: the character's pace assumed when slower (control)
+constexpr float kSourceKeptAngle = 2.0f * kPi / 3.0f;  // 120 degrees (choose_source)
+constexpr float kSourceKeptWidth = 1.0f;                 // m beyond an obstacle's end (choose_source)
+constexpr float kSpanMargin = 0.5f;  // m: a launch point stays this far inside an obstacle's ends (launch_point)
+
 // Kept preparation's hand-over from a target clip to the walk (world.h).
 constexpr float kKeptFadeSeconds = 0.5f;     // s: the cross-fade from the clip's frame into prepared walking
 constexpr float kReleaseClearance = 0.1f;    // m: every joint this far beyond the obstacle's far side
@@ -240,7 +245,6 @@ struct World::Runtime {
   glm::vec2 source_position{0.0f};
   float source_closing_speed = 0.0f;  // m/s toward the character (> 0 closing in)
   bool approach_seen = false, approach_from_far = false;  // the approach to it began more than 1 m away
-  bool relaxed = false;          // the last decision was taken relaxed (no source in range)
   bool released = false;         // the target clip playing was left for prepared locomotion
   float speed = 0.0f;            // m/s over the floor, smoothed over about half a second (steering)
   float stride_scale = 1.0f;     // the tight turn's stride, following its target (steering.h)
@@ -354,16 +358,18 @@ void World::step() {
 
 // The launch point for an action at an object: where the character stands when the action's clip, entered
 // at T_p, meets the object. Across obstacles (bar, beam, hurdle) the approach is along the obstacle's
-// normal, at the character's own lateral place along it (kept within the obstacle's width); for balls and
+// normal, at the character's own lateral place along it (kept kSpanMargin inside the obstacle's ends); for balls and
 // characters it is along the line from the character to the object.
-glm::vec2 World::launch_point(int index, glm::vec2 object, float object_heading, bool across, TargetAction action) const {
+glm::vec2 World::launch_point(int index, glm::vec2 object, float object_heading, bool across, TargetAction action,
+                               float half_width) const {
   const WorldCharacter& c = characters_[static_cast<size_t>(index)];
   const TargetMotion& t = assets_->target(action);
   if (across) {
     glm::vec2 n = forward_of(object_heading);
     if (glm::dot(object - c.position, n) < 0.0f) n = -n;  // the approach runs from the character's side
     const glm::vec2 along = left_of(object_heading);
-    const float lateral = glm::dot(c.position - object, along);
+    float lateral = glm::dot(c.position - object, along);
+    if (half_width > kSpanMargin) lateral = std::clamp(lateral, kSpanMargin - half_width, half_width - kSpanMargin);
     return object + lateral * along - t.reach * n;
   }
   const glm::vec2 d = object - c.position;
@@ -407,7 +413,8 @@ void World::choose_source(int index) {
       c.source_object = picked_source_;
       c.prepared_for = o.spec.action;
       c.source_object_position = floor_xz(o.position);
-      c.source = launch_point(index, c.source_object_position, o.spec.heading, is_across(o.spec.type), c.prepared_for);
+      c.source = launch_point(index, c.source_object_position, o.spec.heading, is_across(o.spec.type), c.prepared_for,
+                              0.5f * o.spec.size.x);
       return;
     }
     picked_source_ = -1;  // used or defeated: the automatic choice resumes
@@ -433,15 +440,20 @@ void World::choose_source(int index) {
     const WorldObject& o = objects_[static_cast<size_t>(k)];
     if (o.used || o.spec.type == ObjectType::Opponent || assets_->target(o.spec.action).clip < 0) continue;
     const glm::vec2 p = floor_xz(o.position), d = p - c.position;
+    // The source of the last tick is kept more loosely (kSourceKeptAngle, kSourceKeptWidth): a character
+    // that weaves or turns on its approach does not lose it and find it again past its launch point.
+    const bool kept = k == runtime_[static_cast<size_t>(index)]->source_key;
     float distance;
     if (is_across(o.spec.type)) {
       const glm::vec2 n = forward_of(o.spec.heading), along = left_of(o.spec.heading);
-      if (std::fabs(glm::dot(c.position - p, along)) > 0.5f * o.spec.size.x) continue;  // passes beside it
+      const float half_width = 0.5f * o.spec.size.x + (kept ? kSourceKeptWidth : 0.0f);
+      if (std::fabs(glm::dot(c.position - p, along)) > half_width) continue;  // passes beside it
       distance = std::fabs(glm::dot(d, n));
     } else {
       distance = glm::length(d);
     }
-    if (glm::dot(d, fwd) <= 0.0f) continue;  // behind: not in the facing direction
+    // Behind: not in the facing direction.
+    if (glm::dot(d, fwd) <= (kept ? std::cos(kSourceKeptAngle) * glm::length(d) : 0.0f)) continue;
     if (distance < best) {
       best = distance;
       c.has_source = true;
@@ -452,7 +464,8 @@ void World::choose_source(int index) {
   }
   if (c.has_source) {
     const WorldObject& o = objects_[static_cast<size_t>(c.source_object)];
-    c.source = launch_point(index, c.source_object_position, o.spec.heading, is_across(o.spec.type), c.prepared_for);
+    c.source = launch_point(index, c.source_object_position, o.spec.heading, is_across(o.spec.type), c.prepared_for,
+                            0.5f * o.spec.size.x);
   }
 }
 
@@ -462,15 +475,11 @@ void World::control(int index) {
   WorldCharacter& c = characters_[static_cast<size_t>(index)];
   Runtime& rt = *runtime_[static_cast<size_t>(index)];
   Controller& ctl = *rt.controller;
-  // Relaxed when no source is in range (world.h); the last source leaving the range is decided on at once.
-  // The range is taken from this tick's source (choose_source), not the last tick's arrival update.
-  const bool relax = params_.runtime.relax_without_source &&
-                     !(c.has_source && approach(index).to_launch <= params_.runtime.preparation_range);
-  if (relax && !rt.relaxed) rt.next_decision = std::min(rt.next_decision, time_);
+  // A goal just reached is stopped at now, not at the end of the action playing (up to a gait cycle on).
+  if (c.control == Control::User && c.reached_goal && rt.stream.node() != assets_->idle_node)
+    rt.next_decision = std::min(rt.next_decision, time_);
   if (time_ >= rt.next_decision && !ctl.arrived()) {
     ControlInput in;
-    in.relax = relax;
-    rt.relaxed = relax;
     in.position = c.position;
     in.heading = c.heading;
     if (c.control == Control::Opponent) in.goal = c.has_source ? c.source : c.position;
@@ -480,6 +489,13 @@ void World::control(int index) {
     if (c.control == Control::User && auto_launch_ && c.source_character >= 0) in.goal = c.source;
     // No source: one far behind, beyond the last distance bin, never to be reached (world.h).
     in.source = c.has_source ? c.source : c.position - 100.0f * forward_of(c.heading);
+    // A source that closes in (an opponent walking up) is shown where a still one would leave the same
+    // time to prepare: nearer by the share of the closing that is its own (training's sources stand still,
+    // so the policy reads distance as time at the character's own pace).
+    if (c.has_source && rt.source_closing_speed > 0.0f) {
+      const float own = std::max(rt.speed, kMinApproachSpeed);
+      in.source = c.position + (in.source - c.position) * (own / (own + rt.source_closing_speed));
+    }
     const ControlDecision d = ctl.decide(in);
     c.motion = d.motion;
     c.chosen_alpha = d.alpha;
@@ -772,7 +788,10 @@ void World::step_character(int index) {
 
   choose_source(index);
   if (!c.in_target) control(index);
-  float alpha = rt.controller->tick();  // Gaussian-smoothed (controller.h)
+  // Relaxed when no source is in range (world.h), taken from this tick's source.
+  const bool relaxed = params_.runtime.relax_without_source && !c.in_target &&
+                       !(c.has_source && approach(index).to_launch <= params_.runtime.preparation_range);
+  float alpha = rt.controller->tick(relaxed);  // Gaussian-smoothed (controller.h)
   if (!preparation_) alpha = 0.0f;      // the naive baseline (set_preparation)
   const auto motion_start = StageClock::now();
   stage_times_.control_ms += ms_between(control_start, motion_start);

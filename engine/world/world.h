@@ -36,9 +36,9 @@
 //   comes first returns through it, at the kept level when the next source is in range.
 // - Otherwise, after a target motion the controller resumes at alpha 0: the clip's graph edge leads into
 //   the plain core locomotion, which is what alpha 0 plays.
-// - Relaxation (RuntimeParams::relax_without_source): with no source in range the controller chooses among
-//   its level-0 actions (controller.h), deciding at once when the last source leaves the range; the
-//   smoothed alpha then falls to 0 within the filter's 3 sigma.
+// - Relaxation (RuntimeParams::relax_without_source): with no source in range the played alpha is 0 while
+//   the controller decides as in the paper (controller.h, tick): the smoothed alpha falls to 0 within the
+//   filter's 3 sigma, and rises back to the policy's level when a source comes into range.
 // - Tight turns and waypoints (steering.h): a goal inside the walking turns' circle is turned toward about
 //   the stance foot; a waypoint other than the last counts as passed when the character goes by it.
 // - No source: the controller is shown one 100 m behind the character, a source it walks away from and
@@ -57,6 +57,7 @@
 //   steering; reaching the scenario's goal is still judged on the scenario's goal.
 #pragma once
 
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -299,7 +300,8 @@ class World {
   void update_goal(int index);
   void update_arrival(int index);
   void update_balance(int index);
-  glm::vec2 launch_point(int index, glm::vec2 object, float object_heading, bool across, TargetAction action) const;
+  glm::vec2 launch_point(int index, glm::vec2 object, float object_heading, bool across, TargetAction action,
+                         float half_width = std::numeric_limits<float>::infinity()) const;
   // The approach to the character's source (set by choose_source): the distance still to go to its launch
   // point along the approach (< 0: past it; infinite without a source) and whether the source lies ahead.
   struct Approach {
