@@ -38,6 +38,14 @@ TightTurn tight_turn(glm::vec2 position, float heading, glm::vec2 goal, float tu
   return t;
 }
 
+float squaring_rate(float heading, float crossing_heading, float max_rate) {
+  float d = crossing_heading - heading;
+  while (d > kPi) d -= 2.0f * kPi;
+  while (d <= -kPi) d += 2.0f * kPi;
+  if (max_rate <= 0.0f || std::fabs(d) < kSquareTolerance) return 0.0f;
+  return std::clamp(d / kTightTurnTime, -max_rate, max_rate);
+}
+
 bool passed_waypoint(glm::vec2 position, float heading, glm::vec2 waypoint, float pass_radius) {
   const glm::vec2 d = waypoint - position;
   if (glm::length(d) > pass_radius) return false;

@@ -49,6 +49,15 @@ struct TightTurn {
 // nearer than kNearGoal and off by more than kNearBearing (then the heading only).
 TightTurn tight_turn(glm::vec2 position, float heading, glm::vec2 goal, float turning_radius, float max_rate);
 
+// Squaring up to an obstacle: once arrived at the launch point of a bar, beam or hurdle (arrival.h) the
+// heading turns toward the obstacle's crossing direction (its normal, from the character's side), so the
+// target clip crosses it square. The policy steers toward the launch point, not along the normal: on an
+// obstacle turned 30 degrees it could come in more than 45 degrees off the crossing, where the world did
+// not count the source as ahead, and launched on the point without its arrival.
+constexpr float kSquareTolerance = 2.0f * 3.14159265f / 180;   // rad: left alone within this
+// The yaw rate (rad/s) that squares `heading` up to `crossing_heading`, capped at `max_rate`.
+float squaring_rate(float heading, float crossing_heading, float max_rate);
+
 // A waypoint the character goes by: within `pass_radius` of it and no longer ahead (it lies behind the
 // line through the character across its facing).
 bool passed_waypoint(glm::vec2 position, float heading, glm::vec2 waypoint, float pass_radius);

@@ -114,6 +114,7 @@ float fastest_level0_turn(const ActionTable& table) {
   return rate;
 }
 
+constexpr float kArrivalFacing = 75.0f * kPi / 180.0f;  // rad off an obstacle's crossing (update_arrival)
 constexpr float kMinApproachSpeed = 0.5f;  // m/s: the character's pace assumed when slower (control)
 constexpr float kSourceKeptAngle = 2.0f * kPi / 3.0f;  // 120 degrees (choose_source)
 constexpr float kSourceKeptWidth = 1.0f;                 // m beyond an obstacle's end (choose_source)
@@ -248,6 +249,7 @@ struct World::Runtime {
   bool released = false;         // the target clip playing was left for prepared locomotion
   float speed = 0.0f;            // m/s over the floor, smoothed over about half a second (steering)
   float stride_scale = 1.0f;     // the tight turn's stride, following its target (steering.h)
+  bool facing = false;           // the source obstacle is faced closely enough to arrive at (Approach)
   std::vector<glm::vec3> positions, centroids;
   std::vector<glm::quat> rotations;
 };
@@ -610,6 +612,7 @@ World::Approach World::approach(int index) const {
     const float along = glm::dot(to_object, n);
     a.to_launch = along - t.reach;
     a.ahead = along > 0.0f && glm::dot(fwd, n) >= kCos45;
+    a.facing = along > 0.0f && glm::dot(fwd, n) >= std::cos(kArrivalFacing);
   } else if (d > 1e-4f) {
     a.to_launch = d - t.reach;
     a.ahead = glm::dot(to_object, fwd) >= kCos45 * d;
@@ -636,10 +639,12 @@ void World::update_arrival(int index) {
   }
   c.to_launch = std::numeric_limits<float>::infinity();
   c.source_ahead = false;
+  rt.facing = false;
   if (c.has_source && !c.in_target) {
     const Approach a = approach(index);
     c.to_launch = a.to_launch;
     c.source_ahead = a.ahead;
+    rt.facing = a.facing;
     const glm::vec2 to_object = c.source_object_position - c.position;
     const float d = glm::length(to_object);
     // How fast the source itself comes toward the character (an opponent walking in), smoothed over about
@@ -666,7 +671,9 @@ void World::update_arrival(int index) {
   // is the launch's miss). Seen with slow core walks, whose stride at 0.8 does not pay for moving on
   // inside the radius (reward.h).
   const bool stopped = ctl.alpha_level() == ctl.policy().table.alpha_levels - 1;
-  const bool within = preparation_ && c.source_ahead &&
+  // An obstacle is arrived at facing it more loosely than it is launched at: the arrival squares the
+  // character up to it (steer_tightly), and the launch waits for that (try_auto_launch: ahead).
+  const bool within = preparation_ && (c.source_ahead || rt.facing) &&
                       (c.to_launch <= arrival_->radius(rt.source_closing_speed) ||
                        ((stopped || ctl.arrived()) && c.to_launch <= params_.reward.source_radius));
   if (within && !ctl.arrived()) {
@@ -719,8 +726,16 @@ void World::steer_tightly(int index) {
   const float dt = params_.runtime.fixed_dt;
   const float max_rate = params_.runtime.tight_turn_deg_per_s * kPi / 180.0f;
   TightTurn turn;
-  const bool steering = max_rate > 0.0f && c.control == Control::User && !c.goal.empty() && !c.reached_goal &&
-                        !rt.controller->arrived() && !(c.source_in_range && c.source_ahead);  // a source's approach is the policy's
+  // Squaring up to the obstacle arrived at comes first (steering.h).
+  if (max_rate > 0.0f && c.control == Control::User && c.has_source && c.source_object >= 0 && rt.controller->arrived() &&
+      is_across(objects_[static_cast<size_t>(c.source_object)].spec.type)) {
+    glm::vec2 n = forward_of(objects_[static_cast<size_t>(c.source_object)].spec.heading);
+    if (glm::dot(c.source_object_position - c.position, n) < 0.0f) n = -n;
+    turn.rate = squaring_rate(c.heading, std::atan2(n.x, n.y), max_rate);
+  }
+  const bool steering = turn.rate == 0.0f && max_rate > 0.0f && c.control == Control::User && !c.goal.empty() &&
+                        !c.reached_goal && !rt.controller->arrived() &&
+                        !(c.source_in_range && c.source_ahead);  // a source's approach is the policy's
   if (steering) {
     const float radius = walking_turn_rate_ > 0.0f ? rt.speed / walking_turn_rate_ : 0.0f;
     turn = tight_turn(c.position, c.heading, c.goal.front(), radius, max_rate);

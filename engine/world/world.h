@@ -307,6 +307,7 @@ class World {
   struct Approach {
     float to_launch = 0.0f;
     bool ahead = false;
+    bool facing = false;  // an obstacle within kArrivalFacing of its crossing: close enough to arrive at
   };
   Approach approach(int index) const;
   bool next_source_in_range(int index) const;
