@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "engine/world/course_evaluation.h"
+#include "engine/world/courses.h"
 #include "engine/world/policy_cache.h"
 #include "engine/world/steering.h"
 #include "engine/world/world.h"
@@ -199,4 +201,26 @@ TEST_CASE("late entry: past an obstacle's launch point the clip is entered where
   // Farther than the clip goes before T_t: T_t, the latest the target movement can start.
   const MotionClip& clip = builtin_assets()->set->clips[static_cast<size_t>(duck.clip)];
   CHECK(duck.entry_frame(100.0f) == clip.target_frame);
+}
+
+TEST_CASE("squaring up: the turn toward an obstacle's crossing, capped, none within the tolerance") {
+  CHECK(squaring_rate(0.0f, 0.5f, 10.0f) == doctest::Approx(0.5f / kTightTurnTime));
+  CHECK(squaring_rate(0.0f, -0.5f, 10.0f) == doctest::Approx(-0.5f / kTightTurnTime));
+  CHECK(squaring_rate(0.0f, 1.5f, 2.0f) == doctest::Approx(2.0f));                  // capped
+  CHECK(squaring_rate(3.0f, -3.0f, 10.0f) > 0.0f);                                  // the short way round
+  CHECK(squaring_rate(0.0f, 0.5f * kSquareTolerance, 10.0f) == 0.0f);
+  CHECK(squaring_rate(0.0f, 0.5f, 0.0f) == 0.0f);                                   // off
+}
+
+TEST_CASE("random courses of seed 1 (the first 30): every acceptance check of prep evaluate --random passes") {
+  CourseOptions o;
+  o.seed = 1;
+  o.actions = actions_of(*builtin_assets());
+  o.reach = reaches_of(*builtin_assets());
+  const CourseTotals t = course_totals(evaluate_courses(make_courses(o, 30), builtin_assets(), 2));
+  REQUIRE(!t.checks.empty());
+  for (const CourseCheck& c : t.checks) {
+    INFO(c.name << ": " << c.measure);
+    CHECK(c.pass);
+  }
 }
