@@ -58,7 +58,7 @@ template <class F> void fields(RuntimeParams& p, F&& f) {
   f("alpha_sigma_s", p.alpha_sigma_s); f("fixed_dt", p.fixed_dt); f("launch_alpha", p.launch_alpha);
   f("preparation_range", p.preparation_range); f("relax_without_source", p.relax_without_source);
   f("kept_alpha", p.kept_alpha); f("tight_turn_deg_per_s", p.tight_turn_deg_per_s);
-  f("waypoint_pass_radius", p.waypoint_pass_radius);
+  f("waypoint_pass_radius", p.waypoint_pass_radius); f("anticipate_closing", p.anticipate_closing);
 }
 template <class F> void sections(Params& p, F&& f) {
   f("contacts", p.contacts); f("graph", p.graph); f("reference", p.reference); f("blend", p.blend);

@@ -182,6 +182,10 @@ struct RuntimeParams {
   // m: a waypoint that is not the last counts as passed when the character goes by it within this distance
   // (it falls behind), as well as on entering RewardParams::goal_radius. 0: only the goal radius.
   float waypoint_pass_radius = 1.0f;
+  // A source that closes in (an opponent walking up) is shown to the controller where a still one would
+  // leave the same time to prepare: training's sources stand still, so the policy reads distance as time
+  // at the character's own pace (engine/world/world.h).
+  bool anticipate_closing = true;
 };
 
 struct Params {

@@ -206,7 +206,6 @@ TEST_CASE("demo keys: WASD held steer relative to the camera, digits launch, T t
   const auto user = [&]() -> const WorldCharacter& { return s.world()->characters()[static_cast<size_t>(s.world()->user())]; };
   const glm::vec3 f = app.view.camera.target - app.view.camera.eye();
   const glm::vec2 forward = glm::normalize(glm::vec2(f.x, f.z)), right(-forward.y, forward.x);
-  const glm::vec2 start = user().position;
   // D held: the goal leads the character to the camera's right (away from the ball ahead); the character
   // turns that way (its turning motions, a gait cycle each, the first when the stride playing ends) and
   // walks on that way.

@@ -1,0 +1,233 @@
+// The sources of influence (Sec. 7.2): which object or character each character prepares for, the launch
+// point where its target clip meets it, the approach to that point, and the arrival there (arrival.h).
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "engine/control/arrival.h"
+#include "engine/world/floor.h"
+#include "engine/world/world.h"
+#include "engine/world/world_runtime.h"
+
+namespace prep {
+
+namespace {
+
+using floor_plane::floor_xz;
+using floor_plane::forward_of;
+using floor_plane::is_across;
+using floor_plane::kPi;
+using floor_plane::left_of;
+
+const float kCos45 = std::cos(kPi / 4.0f);
+constexpr float kArrivalFacing = 75.0f * kPi / 180.0f;  // rad off an obstacle's crossing (update_arrival)
+constexpr float kSourceKeptAngle = 2.0f * kPi / 3.0f;   // 120 degrees (choose_source)
+constexpr float kSourceKeptWidth = 1.0f;                // m beyond an obstacle's end (choose_source)
+constexpr float kSpanMargin = 0.5f;  // m: a launch point stays this far inside an obstacle's ends (launch_point)
+
+}  // namespace
+
+// The launch point for an action at an object: where the character stands when the action's clip, entered
+// at T_p, meets the object. Across obstacles (bar, beam, hurdle) the approach is along the obstacle's
+// normal, at the character's own lateral place along it (kept kSpanMargin inside the obstacle's ends); for balls and
+// characters it is along the line from the character to the object.
+glm::vec2 World::launch_point(int index, glm::vec2 object, float object_heading, bool across, TargetAction action,
+                               float half_width) const {
+  const WorldCharacter& c = characters_[static_cast<size_t>(index)];
+  const TargetMotion& t = assets_->target(action);
+  if (across) {
+    glm::vec2 n = forward_of(object_heading);
+    if (glm::dot(object - c.position, n) < 0.0f) n = -n;  // the approach runs from the character's side
+    const glm::vec2 along = left_of(object_heading);
+    float lateral = glm::dot(c.position - object, along);
+    if (half_width > kSpanMargin) lateral = std::clamp(lateral, kSpanMargin - half_width, half_width - kSpanMargin);
+    return object + lateral * along - t.reach * n;
+  }
+  const glm::vec2 d = object - c.position;
+  const float len = glm::length(d);
+  const glm::vec2 dir = len > 1e-4f ? d / len : forward_of(c.heading);
+  return object - t.reach * dir;
+}
+
+// Sec. 7.2: the source of influence. User: the closest opponent still fighting (fight), else the closest
+// unused object in the facing direction (within 90 degrees; an across obstacle also within its width).
+// Opponents: the user's character.
+void World::choose_source(int index) {
+  WorldCharacter& c = characters_[static_cast<size_t>(index)];
+  c.has_source = false;
+  c.source_object = c.source_character = -1;
+  const glm::vec2 fwd = forward_of(c.heading);
+  if (c.control == Control::Opponent) {
+    const WorldCharacter& u = characters_[static_cast<size_t>(user_)];
+    if (c.defeated) return;
+    c.has_source = true;
+    c.source_character = user_;
+    c.prepared_for = c.met_with;
+    c.source_object_position = u.position;
+    c.source = launch_point(index, u.position, 0.0f, false, c.met_with);
+    return;
+  }
+  if (picked_source_ >= 0) {  // picked by hand (set_source): kept while it can still be acted on
+    const WorldObject& o = objects_[static_cast<size_t>(picked_source_)];
+    if (o.spec.type == ObjectType::Opponent && o.character >= 0) {
+      const WorldCharacter& opponent = characters_[static_cast<size_t>(o.character)];
+      if (!opponent.defeated) {
+        c.has_source = true;
+        c.source_character = o.character;
+        c.prepared_for = opponent.met_with;
+        c.source_object_position = opponent.position;
+        c.source = launch_point(index, opponent.position, 0.0f, false, c.prepared_for);
+        return;
+      }
+    } else if (!o.used && assets_->target(o.spec.action).clip >= 0) {
+      c.has_source = true;
+      c.source_object = picked_source_;
+      c.prepared_for = o.spec.action;
+      c.source_object_position = floor_xz(o.position);
+      c.source = launch_point(index, c.source_object_position, o.spec.heading, is_across(o.spec.type), c.prepared_for,
+                              0.5f * o.spec.size.x);
+      return;
+    }
+    picked_source_ = -1;  // used or defeated: the automatic choice resumes
+  }
+  float best = std::numeric_limits<float>::infinity();
+  for (int k = 0; k < static_cast<int>(characters_.size()); ++k) {
+    const WorldCharacter& o = characters_[static_cast<size_t>(k)];
+    if (o.control != Control::Opponent || o.defeated) continue;
+    const float d = glm::length(o.position - c.position);
+    if (d < best) {
+      best = d;
+      c.has_source = true;
+      c.source_character = k;
+      c.prepared_for = o.met_with;
+      c.source_object_position = o.position;
+    }
+  }
+  if (c.has_source) {
+    c.source = launch_point(index, c.source_object_position, 0.0f, false, c.prepared_for);
+    return;
+  }
+  for (int k = 0; k < static_cast<int>(objects_.size()); ++k) {
+    const WorldObject& o = objects_[static_cast<size_t>(k)];
+    if (o.used || o.spec.type == ObjectType::Opponent || assets_->target(o.spec.action).clip < 0) continue;
+    const glm::vec2 p = floor_xz(o.position), d = p - c.position;
+    // The source of the last tick is kept more loosely (kSourceKeptAngle, kSourceKeptWidth): a character
+    // that weaves or turns on its approach does not lose it and find it again past its launch point.
+    const bool kept = k == runtime_[static_cast<size_t>(index)]->source_key;
+    float distance;
+    if (is_across(o.spec.type)) {
+      const glm::vec2 n = forward_of(o.spec.heading), along = left_of(o.spec.heading);
+      const float half_width = 0.5f * o.spec.size.x + (kept ? kSourceKeptWidth : 0.0f);
+      if (std::fabs(glm::dot(c.position - p, along)) > half_width) continue;  // passes beside it
+      distance = std::fabs(glm::dot(d, n));
+    } else {
+      distance = glm::length(d);
+    }
+    // Behind: not in the facing direction.
+    if (glm::dot(d, fwd) <= (kept ? std::cos(kSourceKeptAngle) * glm::length(d) : 0.0f)) continue;
+    if (distance < best) {
+      best = distance;
+      c.has_source = true;
+      c.source_object = k;
+      c.prepared_for = o.spec.action;
+      c.source_object_position = p;
+    }
+  }
+  if (c.has_source) {
+    const WorldObject& o = objects_[static_cast<size_t>(c.source_object)];
+    c.source = launch_point(index, c.source_object_position, o.spec.heading, is_across(o.spec.type), c.prepared_for,
+                            0.5f * o.spec.size.x);
+  }
+}
+
+World::Approach World::approach(int index) const {
+  const WorldCharacter& c = characters_[static_cast<size_t>(index)];
+  Approach a;
+  a.to_launch = std::numeric_limits<float>::infinity();
+  if (!c.has_source) return a;
+  const TargetMotion& t = assets_->target(c.prepared_for);
+  const glm::vec2 fwd = forward_of(c.heading);
+  const glm::vec2 to_object = c.source_object_position - c.position;
+  const float d = glm::length(to_object);
+  if (c.source_object >= 0 && is_across(objects_[static_cast<size_t>(c.source_object)].spec.type)) {
+    // Along the obstacle's normal, from the character's side (as launch_point() places the point).
+    glm::vec2 n = forward_of(objects_[static_cast<size_t>(c.source_object)].spec.heading);
+    if (glm::dot(to_object, n) < 0.0f) n = -n;
+    const float along = glm::dot(to_object, n);
+    a.to_launch = along - t.reach;
+    a.ahead = along > 0.0f && glm::dot(fwd, n) >= kCos45;
+    a.facing = along > 0.0f && glm::dot(fwd, n) >= std::cos(kArrivalFacing);
+  } else if (d > 1e-4f) {
+    a.to_launch = d - t.reach;
+    a.ahead = glm::dot(to_object, fwd) >= kCos45 * d;
+  }
+  return a;
+}
+
+// Arrival at the launch point (engine/control/arrival.h): how far the character still has to go along the
+// approach, whether the source lies ahead, and the forcing of the played alpha once within the arrival
+// radius. Runs after the tick's pose, so the next tick plays the forced alpha.
+void World::update_arrival(int index) {
+  WorldCharacter& c = characters_[static_cast<size_t>(index)];
+  Runtime& rt = *runtime_[static_cast<size_t>(index)];
+  Controller& ctl = *rt.controller;
+  const float dt = params_.runtime.fixed_dt;
+  const int key = !c.has_source ? -2 : c.source_object >= 0 ? c.source_object : -c.source_character - 3;
+  if (key != rt.source_key) {  // another source (or none): its approach starts afresh
+    rt.source_key = key;
+    rt.source_position = c.source_object_position;
+    rt.source_closing_speed = 0.0f;
+    rt.approach_seen = false;
+    c.level_at_arrival = c.alpha_at_1m = -1.0f;
+    if (ctl.arrived()) ctl.set_arrived(false);
+  }
+  c.to_launch = std::numeric_limits<float>::infinity();
+  c.source_ahead = false;
+  rt.facing = false;
+  if (c.has_source && !c.in_target) {
+    const Approach a = approach(index);
+    c.to_launch = a.to_launch;
+    c.source_ahead = a.ahead;
+    rt.facing = a.facing;
+    const glm::vec2 to_object = c.source_object_position - c.position;
+    const float d = glm::length(to_object);
+    // How fast the source itself comes toward the character (an opponent walking in), smoothed over about
+    // a gait cycle (the root sways within one).
+    if (d > 1e-4f) {
+      const float closing = -glm::dot(c.source_object_position - rt.source_position, to_object / d) / dt;
+      const float k = dt / (dt + 0.5f);
+      rt.source_closing_speed += k * (std::max(0.0f, closing) - rt.source_closing_speed);
+    }
+    rt.source_position = c.source_object_position;
+    // The alpha 1 m before the launch point, for an approach that began farther away (one that starts
+    // closer, e.g. out of the previous obstacle's clip, has no such moment: left at -1).
+    if (!rt.approach_seen) {
+      rt.approach_seen = true;
+      rt.approach_from_far = c.to_launch > 1.0f;
+    }
+    if (rt.approach_from_far && c.alpha_at_1m < 0.0f && c.to_launch <= 1.0f) c.alpha_at_1m = c.alpha;
+  }
+  c.source_in_range = c.has_source && !c.in_target && c.to_launch <= params_.runtime.preparation_range;
+  // Without preparation (the naive baseline, set_preparation) synthesis ignores alpha, so nothing would
+  // stop the character: it walks on to the launch point and launches there.
+  // A character whose policy has itself chosen the top level inside the source radius has stopped there
+  // (w_r = 1, Eq. 3-4): it has arrived as near as it will get, and launches where it stands (the shortfall
+  // is the launch's miss). Seen with slow core walks, whose stride at 0.8 does not pay for moving on
+  // inside the radius (reward.h).
+  const bool stopped = ctl.alpha_level() == ctl.policy().table.alpha_levels - 1;
+  // An obstacle is arrived at facing it more loosely than it is launched at: the arrival squares the
+  // character up to it (steer_tightly), and the launch waits for that (try_auto_launch: ahead).
+  const bool within = preparation_ && (c.source_ahead || rt.facing) &&
+                      (c.to_launch <= arrival_->radius(rt.source_closing_speed) ||
+                       ((stopped || ctl.arrived()) && c.to_launch <= params_.reward.source_radius));
+  if (within && !ctl.arrived()) {
+    c.level_at_arrival = ctl.alpha_of_level(ctl.alpha_level());
+    ctl.set_arrived(true);
+  } else if (!within && ctl.arrived()) {
+    ctl.set_arrived(false);
+  }
+  c.arrived = ctl.arrived();
+  if (c.arrived) c.chosen_alpha = 1.0f;
+}
+
+}  // namespace prep

@@ -1,0 +1,187 @@
+// The target motions of a motion set as the world uses them (WorldAssets): T_p, where each clip meets its
+// object (reach, lateral), where its target movement is over (release_frame) and how far it has come by
+// each frame before T_t (advance); and loading a scenario's motions, Params and policy.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <vector>
+
+#include "engine/graph/reference_posture.h"
+#include "engine/library/builtin.h"
+#include "engine/library/generated.h"
+#include "engine/motion/kinematics.h"
+#include "engine/synthesis/preparation_run.h"
+#include "engine/util/error.h"
+#include "engine/util/files.h"
+#include "engine/world/floor.h"
+#include "engine/world/policy_cache.h"
+#include "engine/world/world.h"
+
+namespace prep {
+
+namespace {
+
+using floor_plane::floor_xz;
+using floor_plane::forward_of;
+using floor_plane::left_of;
+
+// Where a target clip meets its object, in the clip's coordinates on the floor (x, z).
+// - Built-in obstacle clips: the middle of the obstacle they were made for (library::obstacle_of).
+// - Kicks and punches: the farthest point the striking foot (toe tips) or hand (wrist) reaches ahead of
+//   the T_p root during the target movement (T_t to one second after it).
+// - Other obstacle clips (a manifest's crawl, duck, jump): the root's position half a second after T_t,
+//   about where the body passes the obstacle.
+// `peak_frame` (optional) receives the frame where a striking effector reached that point (-1 otherwise).
+glm::vec2 interaction_point(const MotionSet& set, const MotionClip& mc, TargetAction action, int reference_frame,
+                            int* peak_frame = nullptr) {
+  if (peak_frame) *peak_frame = -1;
+  if (set.name == "builtin") {
+    const library::Obstacle o = library::obstacle_of(mc.clip.name);
+    if (o.height > 0.0f) return {0.0f, 0.5f * (o.z_near + o.z_far)};
+  }
+  const Clip& clip = mc.clip;
+  const int t_t = std::clamp(mc.target_frame, 0, clip.frame_count() - 1);
+  const int end = std::min(clip.frame_count() - 1, t_t + static_cast<int>(std::lround(clip.fps)));
+  const Pose& ref = clip.frames[static_cast<size_t>(reference_frame)];
+  const glm::vec2 origin = floor_xz(ref.root_position);
+  const glm::vec2 fwd = forward_of(heading_of(ref.rotations[0]));
+  std::vector<int> effectors;
+  std::vector<bool> end_site;
+  const BodyMap& body = set.body;
+  if (action == TargetAction::Kick) {
+    for (const auto& leg : body.legs)
+      if (leg.toe_tip_joint >= 0) effectors.push_back(leg.toe_tip_joint);
+  } else if (action == TargetAction::PunchLeft) {
+    effectors.push_back(body.arms[kLeft].wrist);
+  } else if (action == TargetAction::PunchRight) {
+    effectors.push_back(body.arms[kRight].wrist);
+  }
+  effectors.erase(std::remove(effectors.begin(), effectors.end(), -1), effectors.end());
+  if (effectors.empty()) {
+    const int f = std::min(clip.frame_count() - 1, t_t + static_cast<int>(std::lround(0.5f * clip.fps)));
+    return floor_xz(clip.frames[static_cast<size_t>(f)].root_position);
+  }
+  std::vector<glm::vec3> positions;
+  std::vector<glm::quat> rotations;
+  glm::vec2 best = origin;
+  float best_forward = -std::numeric_limits<float>::infinity();
+  for (int f = t_t; f <= end; ++f) {
+    forward_kinematics(*set.skeleton, clip.frames[static_cast<size_t>(f)], positions, &rotations);
+    for (int j : effectors) {
+      const bool kick = action == TargetAction::Kick;
+      const glm::vec3 p = kick && set.skeleton->joints[static_cast<size_t>(j)].has_end_site
+                              ? end_site_position(*set.skeleton, j, positions, rotations)
+                              : positions[static_cast<size_t>(j)];
+      const float ahead = glm::dot(floor_xz(p) - origin, fwd);
+      if (ahead > best_forward) {
+        best_forward = ahead;
+        best = floor_xz(p);
+        if (peak_frame) *peak_frame = f;
+      }
+    }
+  }
+  return best;
+}
+
+std::optional<Role> role_of(TargetAction a) { return parse_role(role_name_of(a)); }
+
+constexpr float kReleaseClearance = 0.1f;    // m: every joint this far beyond the obstacle's far side
+constexpr float kReleaseAfterStrike = 0.2f;  // s after a strike's farthest reach (the hand or foot returning)
+constexpr float kRailHalfDepth = 0.05f;      // m: half the depth of an obstacle's rail (scenario objects' 0.1)
+
+// TargetMotion::release_frame. Obstacles (a bar, beam or hurdle is crossed along the T_p facing): the first
+// frame after T_t at which every joint lies beyond the obstacle's far side by kReleaseClearance; the far side
+// is the built-in clip's own obstacle, else the interaction point plus a rail's half depth. Strikes:
+// kReleaseAfterStrike after the effector's farthest reach.
+int release_frame_of(const MotionSet& set, const MotionClip& mc, TargetAction action, int reference_frame,
+                     glm::vec2 interaction, int peak_frame) {
+  const Clip& clip = mc.clip;
+  const int t_t = std::clamp(mc.target_frame, 0, clip.frame_count() - 1);
+  if (action == TargetAction::Kick || action == TargetAction::PunchLeft || action == TargetAction::PunchRight) {
+    if (peak_frame < 0) return -1;
+    const int f = peak_frame + static_cast<int>(std::lround(kReleaseAfterStrike * clip.fps));
+    return f < clip.frame_count() ? f : -1;
+  }
+  const Pose& ref = clip.frames[static_cast<size_t>(reference_frame)];
+  const glm::vec2 origin = floor_xz(ref.root_position);
+  const glm::vec2 fwd = forward_of(heading_of(ref.rotations[0]));
+  float far_side = glm::dot(interaction - origin, fwd) + kRailHalfDepth;
+  if (set.name == "builtin") {
+    const library::Obstacle o = library::obstacle_of(clip.name);
+    if (o.height > 0.0f) far_side = glm::dot(glm::vec2(0.0f, o.z_far) - origin, fwd);
+  }
+  std::vector<glm::vec3> positions;
+  for (int f = t_t; f < clip.frame_count(); ++f) {
+    forward_kinematics(*set.skeleton, clip.frames[static_cast<size_t>(f)], positions);
+    bool beyond = true;
+    for (const glm::vec3& p : positions) beyond = beyond && glm::dot(floor_xz(p) - origin, fwd) > far_side + kReleaseClearance;
+    if (beyond) return f;
+  }
+  return -1;
+}
+
+}  // namespace
+
+std::shared_ptr<const MotionSet> load_scenario_motions(const Scenario& scenario, const Params& params) {
+  if (scenario.motions == "builtin") return std::make_shared<const MotionSet>(make_builtin_motion_set(params));
+  const std::string path = scenario.motions.front() == '/' ? scenario.motions : source_dir() + "/" + scenario.motions;
+  return std::make_shared<const MotionSet>(load_motion_set(path, params));
+}
+
+Params load_scenario_params(const Scenario& scenario) {
+  return scenario.params_file.empty() ? Params{} : load_params(scenario.params_file);
+}
+
+std::shared_ptr<const WorldAssets> prepare_world_assets(const Scenario& scenario, const Params& params,
+                                                        const std::string& cache_dir, bool* trained) {
+  auto assets = std::make_shared<WorldAssets>(make_world_assets(load_scenario_motions(scenario, params), params));
+  assets->policy = load_or_train_policy(*assets->set, *assets->graph, params, cache_dir, {}, trained);
+  return assets;
+}
+
+WorldAssets make_world_assets(std::shared_ptr<const MotionSet> set, const Params& params) {
+  WorldAssets a;
+  a.params = params;
+  a.set = set;
+  a.graph = std::make_shared<const MotionGraph>(MotionGraph::build(*set, params.graph));
+  a.synthesizer = std::make_shared<const Synthesizer>(*set, params);
+  const std::string source = set->manifest_path.empty() ? set->name : set->manifest_path;
+
+  for (const MotionClip* c : core_clips(*set, params.quantization)) a.core_nodes.push_back(static_cast<int>(c - set->clips.data()));
+  a.idle_node = find_cyclic_clip(*set, Role::Idle);
+  if (a.idle_node < 0) a.idle_node = find_cyclic_clip(*set, Role::Walk);
+  if (a.idle_node < 0) throw InputError(source, "the motion set has neither a cyclic idle nor a cyclic walk clip");
+
+  a.targets.resize(kTargetActionCount);
+  for (int k = 0; k < kTargetActionCount; ++k) {
+    TargetMotion& t = a.targets[static_cast<size_t>(k)];
+    t.action = static_cast<TargetAction>(k);
+    const auto role = role_of(t.action);
+    for (size_t i = 0; i < set->clips.size() && t.clip < 0; ++i)
+      if (role && set->clips[i].role == *role && set->clips[i].target_frame >= 0) t.clip = static_cast<int>(i);
+    if (t.clip < 0) continue;
+    const MotionClip& mc = set->clips[static_cast<size_t>(t.clip)];
+    t.reference_frame = find_reference_posture(*set, t.clip, params).frame;  // Sec. 4.2
+    t.reference = mc.clip.frames[static_cast<size_t>(t.reference_frame)];
+    const glm::vec2 origin = floor_xz(t.reference.root_position);
+    const float h = heading_of(t.reference.rotations[0]);
+    int peak_frame = -1;
+    const glm::vec2 meets = interaction_point(*set, mc, t.action, t.reference_frame, &peak_frame);
+    const glm::vec2 q = meets - origin;
+    t.reach = glm::dot(q, forward_of(h));
+    t.lateral = glm::dot(q, left_of(h));
+    t.release_frame = release_frame_of(*set, mc, t.action, t.reference_frame, meets, peak_frame);
+    for (int f = t.reference_frame; f <= std::max(t.reference_frame, mc.target_frame); ++f)
+      t.advance.push_back(glm::dot(floor_xz(mc.clip.frames[static_cast<size_t>(f)].root_position) - origin, forward_of(h)));
+  }
+  return a;
+}
+
+int TargetMotion::entry_frame(float past_launch_point) const {
+  for (size_t k = 0; k < advance.size(); ++k)
+    if (advance[k] >= past_launch_point) return reference_frame + static_cast<int>(k);
+  return reference_frame + static_cast<int>(advance.size()) - 1;  // T_t at the latest
+}
+
+}  // namespace prep

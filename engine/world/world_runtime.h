@@ -1,0 +1,47 @@
+// One character's run-time state inside the World (its motion stream, controller, synthesis state and the
+// bookkeeping of its approach), shared by the world's files. Internal to engine/world.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include <glm/gtc/quaternion.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "engine/control/controller.h"
+#include "engine/synthesis/synthesizer.h"
+#include "engine/world/motion_stream.h"
+#include "engine/world/world.h"
+
+namespace prep {
+
+struct World::Runtime {
+  explicit Runtime(const MotionGraph& graph) : stream(graph) {}
+  MotionStream stream;
+  std::unique_ptr<Controller> controller;
+  SynthesisState synthesis;
+  SynthesisScratch scratch;
+  float next_decision = 0.0f;
+  bool reseed = false;           // the next synthesized frame continues from the current position
+  glm::vec3 last_displacement{0.0f};       // the locomotion's last step (m per tick)
+  glm::vec3 synthesis_previous_root{0.0f};
+  Pose fade_from;                // cross-fade from this pose ...
+  float fade_left = 0.0f;        // ... over the remaining seconds
+  float fade_total = 0.0f;
+  int target_object = -1, target_character = -1;
+  bool struck = false;           // the target movement (T_t) was reached
+  // The source as last seen (for its speed toward the character and to notice a change of source).
+  int source_key = -2;           // object index, or -(character index) - 3, or -2 for none
+  glm::vec2 source_position{0.0f};
+  float source_closing_speed = 0.0f;  // m/s toward the character (> 0 closing in)
+  bool approach_seen = false, approach_from_far = false;  // the approach to it began more than 1 m away
+  bool released = false;         // the target clip playing was left for prepared locomotion
+  float speed = 0.0f;            // m/s over the floor, smoothed over about half a second (steering)
+  float stride_scale = 1.0f;     // the tight turn's stride, following its target (steering.h)
+  bool facing = false;           // the source obstacle is faced closely enough to arrive at (Approach)
+  std::vector<glm::vec3> positions, centroids;
+  std::vector<glm::quat> rotations;
+};
+
+}  // namespace prep
