@@ -251,9 +251,7 @@ CourseEvaluation evaluate_course(const Scenario& scenario, std::shared_ptr<const
     world.step();
     recorder.observe(world);
     if (done_at < 0) {
-      bool playing = false;
-      for (const WorldCharacter& c : world.characters()) playing = playing || c.in_target;
-      if (world.goal_reached() && !playing) done_at = world.ticks();
+      if (world.done()) done_at = world.ticks();
     } else if (world.ticks() >= done_at + relax_ticks) {
       break;
     }

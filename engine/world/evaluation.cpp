@@ -440,9 +440,7 @@ Evaluation evaluate_scenario(const Scenario& scenario, std::shared_ptr<const Wor
     world.step();
     recorder.observe(world);
     if (done_at < 0) {
-      bool playing = false;
-      for (const WorldCharacter& c : world.characters()) playing = playing || c.in_target;
-      if (world.goal_reached() && !playing) done_at = world.ticks();
+      if (world.done()) done_at = world.ticks();
     } else if (world.ticks() >= done_at + settle_ticks) {
       break;
     }

@@ -128,6 +128,13 @@ void World::set_source(int object) {
   picked_source_ = object >= 0 && object < static_cast<int>(objects_.size()) ? object : -1;
 }
 
+bool World::done() const {
+  if (!goal_reached()) return false;
+  for (const WorldCharacter& c : characters_)
+    if (c.in_target) return false;
+  return true;
+}
+
 void World::run(float seconds) {
   const int n = static_cast<int>(std::lround(seconds / params_.runtime.fixed_dt));
   for (int k = 0; k < n; ++k) step();

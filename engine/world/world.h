@@ -277,6 +277,8 @@ class World {
   const std::vector<LaunchRecord>& launches() const { return launches_; }
   int user() const { return user_; }
   bool goal_reached() const { return characters_[static_cast<size_t>(user_)].reached_goal; }
+  // The run is done: the user's goal is reached and no character plays a target motion.
+  bool done() const;
   const std::vector<glm::vec2>& alpha_history() const { return alpha_history_; }
   // Wall-clock milliseconds of the last step(), by stage, summed over the characters (the demo's timings).
   struct StageTimes {
