@@ -45,7 +45,7 @@ float fastest_level0_turn(const ActionTable& table) {
 }
 
 constexpr float kMinApproachSpeed = 0.5f;  // m/s: the character's pace assumed when slower (control)
-constexpr float kKeptFadeSeconds = 0.5f;   // s: kept preparation's cross-fade from a target clip into walking
+constexpr float kKeptFadeSeconds = 1.0f;   // s: kept preparation's cross-fade from a target clip into walking
 
 }  // namespace
 
@@ -203,8 +203,7 @@ void World::control(int index) {
     const bool stay = (c.control == Control::User && c.reached_goal) || (c.control == Control::Opponent && c.defeated);
     const int wanted = stay ? assets_->idle_node : assets_->core_nodes[static_cast<size_t>(d.motion)];
     if (wanted != rt.stream.node()) {
-      rt.fade_from = c.pose;
-      rt.fade_total = rt.fade_left = params_.graph.blend_s;
+      rt.begin_fade(c.pose, params_.graph.blend_s);
       rt.stream.switch_to(wanted, c.position, c.heading);
       rt.reseed = true;
     }
@@ -214,8 +213,7 @@ void World::control(int index) {
     if (!rt.stream.queue(wanted)) {
       // The graph has no edge to the wanted motion from here (e.g. a set whose idle joins nothing):
       // switch anyway, placed where the character stands and cross-faded over GraphParams::blend_s.
-      rt.fade_from = c.pose;
-      rt.fade_total = rt.fade_left = params_.graph.blend_s;
+      rt.begin_fade(c.pose, params_.graph.blend_s);
       rt.stream.start(wanted, -1, c.position, c.heading);
       rt.reseed = true;
     }
@@ -248,9 +246,8 @@ bool World::start_target(int index, TargetAction action, int object, int target_
   // Past the launch point of an obstacle, the clip is entered where it has come as far (TargetMotion::advance).
   const bool across_obstacle = object >= 0 && is_across(objects_[static_cast<size_t>(object)].spec.type);
   const int entry = at_source && across_obstacle && c.to_launch < 0.0f ? t.entry_frame(-c.to_launch) : t.reference_frame;
-  rt.fade_from = c.pose;
   // A late entry follows the previous target clip: the poses differ more, the fade is the kept one's.
-  rt.fade_total = rt.fade_left = entry == t.reference_frame ? params_.graph.blend_s : kKeptFadeSeconds;
+  rt.begin_fade(c.pose, entry == t.reference_frame ? params_.graph.blend_s : kKeptFadeSeconds);
   rt.stream.start(t.clip, entry, c.position, c.heading);
   const int walk = find_cyclic_clip(*assets_->set, Role::Walk);
   bool queued = walk >= 0 && rt.stream.queue(walk);
@@ -315,8 +312,7 @@ bool World::release_for_next_source(int index) {
   c.in_target = false;
   rt.controller->reset(motion, kept_level());
   rt.next_decision = time_;
-  rt.fade_from = c.pose;
-  rt.fade_total = rt.fade_left = kKeptFadeSeconds;
+  rt.begin_fade(c.pose, kKeptFadeSeconds);
   rt.stream.switch_to(assets_->core_nodes[static_cast<size_t>(motion)], c.position, c.heading);
   rt.reseed = true;
   return true;
@@ -429,8 +425,7 @@ void World::step_character(int index) {
                            next_source_in_range(index) ? kept_level() : 0);
       rt.next_decision = time_;
       rt.reseed = true;
-      rt.fade_from = c.pose;
-      rt.fade_total = rt.fade_left = params_.graph.blend_s;
+      rt.begin_fade(c.pose, params_.graph.blend_s);
     } else if (!rt.struck && rt.stream.clip_frame() >= mc.target_frame) {
       rt.struck = true;  // the target movement begins: the ball flies, the opponent is hit
       if (c.playing == TargetAction::Kick && rt.target_object >= 0) {

@@ -2,6 +2,7 @@
 // bookkeeping of its approach), shared by the world's files. Internal to engine/world.
 #pragma once
 
+#include <algorithm>
 #include <memory>
 #include <vector>
 
@@ -29,6 +30,12 @@ struct World::Runtime {
   Pose fade_from;                // cross-fade from this pose ...
   float fade_left = 0.0f;        // ... over the remaining seconds
   float fade_total = 0.0f;
+  // A cross-fade from `from` (the pose shown now) over `seconds`, or over what is left of the fade under
+  // way if that is longer: a switch right after a release must not cut kept preparation's long fade short.
+  void begin_fade(const Pose& from, float seconds) {
+    fade_from = from;
+    fade_total = fade_left = std::max(seconds, fade_left);
+  }
   int target_object = -1, target_character = -1;
   bool struck = false;           // the target movement (T_t) was reached
   // The source as last seen (for its speed toward the character and to notice a change of source).
