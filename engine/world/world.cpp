@@ -49,7 +49,6 @@ constexpr float kKeptFadeSeconds = 1.0f;   // s: kept preparation's cross-fade f
 
 }  // namespace
 
-
 World::World(const Scenario& scenario, std::shared_ptr<const WorldAssets> assets)
     : scenario_(scenario), assets_(std::move(assets)), params_(assets_->params), synthesizer_(assets_->synthesizer),
       policy_(assets_->policy), auto_launch_(scenario.auto_launch) {

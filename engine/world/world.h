@@ -7,6 +7,11 @@
 //   alpha -> the motion stream plays m through the motion graph -> Synthesizer::step (blend toward the T_p of
 //   the action the source calls for, trajectory, foot IK, balance) -> pose.
 //
+// Where each part lives: world.cpp the tick (control, launches, kept preparation, steering, goals);
+// sources.cpp the sources of influence, launch points, the approach and the arrival; target_motions.cpp the
+// assets (T_p, reach, release and advance of each target clip); summary.cpp the run summaries; steering.h
+// the tight turns and squaring up.
+//
 // Choices where the paper leaves it open (each also stated where it is coded):
 // - The source point the controller sees is the launch point of the object: where the character must
 //   stand, facing the object, for the target clip entered at its T_p frame to meet the object (a bar
