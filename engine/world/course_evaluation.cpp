@@ -243,19 +243,8 @@ CourseEvaluation evaluate_course(const Scenario& scenario, std::shared_ptr<const
   World world(scenario, std::move(assets));
   world.set_auto(true);
   CourseRecorder recorder(world);
-  const float dt = world.params().runtime.fixed_dt;
-  const int max_ticks = static_cast<int>(std::lround(course_time_limit(scenario) / dt));
-  const int relax_ticks = static_cast<int>(std::lround(course_metric::kRelaxSeconds / dt));
-  int done_at = -1;
-  for (int k = 0; k < max_ticks; ++k) {
-    world.step();
-    recorder.observe(world);
-    if (done_at < 0) {
-      if (world.done()) done_at = world.ticks();
-    } else if (world.ticks() >= done_at + relax_ticks) {
-      break;
-    }
-  }
+  world.run_until_done(course_time_limit(scenario), course_metric::kRelaxSeconds,
+                       [&](const World& w) { recorder.observe(w); });
   return recorder.finish(world);
 }
 

@@ -432,19 +432,7 @@ Evaluation evaluate_scenario(const Scenario& scenario, std::shared_ptr<const Wor
   world.set_auto(true);
   world.set_preparation(method != EvaluationMethod::Naive);
   EvaluationRecorder recorder(world, reference);
-  const float dt = world.params().runtime.fixed_dt;
-  const int max_ticks = static_cast<int>(std::lround(max_seconds / dt));
-  const int settle_ticks = static_cast<int>(std::lround(metric::kSettle / dt));
-  int done_at = -1;
-  for (int k = 0; k < max_ticks; ++k) {
-    world.step();
-    recorder.observe(world);
-    if (done_at < 0) {
-      if (world.done()) done_at = world.ticks();
-    } else if (world.ticks() >= done_at + settle_ticks) {
-      break;
-    }
-  }
+  world.run_until_done(max_seconds, metric::kSettle, [&](const World& w) { recorder.observe(w); });
   return recorder.finish(world, method);
 }
 

@@ -62,6 +62,7 @@
 //   steering; reaching the scenario's goal is still judged on the scenario's goal.
 #pragma once
 
+#include <cmath>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -284,6 +285,24 @@ class World {
   bool goal_reached() const { return characters_[static_cast<size_t>(user_)].reached_goal; }
   // The run is done: the user's goal is reached and no character plays a target motion.
   bool done() const;
+  // Steps until the run has been done for `after_done` seconds, or `max_seconds` have passed, calling
+  // observe(*this) after every step (the evaluations' unattended runs).
+  template <class Observe>
+  void run_until_done(float max_seconds, float after_done, Observe&& observe) {
+    const float dt = params_.runtime.fixed_dt;
+    const int max_ticks = static_cast<int>(std::lround(max_seconds / dt));
+    const int tail_ticks = static_cast<int>(std::lround(after_done / dt));
+    int done_at = -1;
+    for (int k = 0; k < max_ticks; ++k) {
+      step();
+      observe(*this);
+      if (done_at < 0) {
+        if (done()) done_at = ticks_;
+      } else if (ticks_ >= done_at + tail_ticks) {
+        break;
+      }
+    }
+  }
   const std::vector<glm::vec2>& alpha_history() const { return alpha_history_; }
   // Wall-clock milliseconds of the last step(), by stage, summed over the characters (the demo's timings).
   struct StageTimes {
