@@ -133,7 +133,8 @@ CourseRecorder::CourseRecorder(const World& world)
     : no_source_(!world.characters()[static_cast<size_t>(world.user())].source_in_range &&
                      !world.characters()[static_cast<size_t>(world.user())].in_target,
                  world.characters()[static_cast<size_t>(world.user())].alpha),
-      circling_(world.params().runtime.fixed_dt, world.characters()[static_cast<size_t>(world.user())].heading) {
+      circling_(world.params().runtime.fixed_dt, world.characters()[static_cast<size_t>(world.user())].heading),
+      clearance_(world) {
   const Scenario& s = world.scenario();
   const WorldCharacter& u = world.characters()[static_cast<size_t>(world.user())];
   e_.name = s.name;
@@ -173,6 +174,8 @@ void CourseRecorder::observe(const World& world) {
     e_.launches.push_back(l);
   }
 
+  clearance_.observe(world);
+
   // The path up to the goal.
   if (!e_.reached_goal) {
     e_.path_length += glm::length(u.position - last_position_);
@@ -198,6 +201,13 @@ CourseEvaluation CourseRecorder::finish(const World& world) const {
   e.seconds = world.time();
   NoSourceMeter no_source = no_source_;
   no_source.finish();
+  e.clearance = clearance_.summary;
+  // The user's launches are those of ClearanceLog's with the user's index, in the same order.
+  size_t next = 0;
+  for (const LaunchClearance& l : clearance_.launches) {
+    if (l.character != world.user() || next >= e.launches.size()) continue;
+    e.launches[next++].min_clearance = l.min_clearance;
+  }
   e.no_source_alpha = no_source.alpha();
   e.relax_times = no_source.relax_times();
   e.unrelaxed_episodes = no_source.unrelaxed();
@@ -313,6 +323,16 @@ CourseTotals course_totals(const std::vector<CourseEvaluation>& courses) {
     if (e.circling_visits > 0) ++t.circling_courses;
     t.circling_seconds += e.circling_seconds;
     for (const KeptPreparation& k : e.kept) kept.push_back(k.min_alpha);
+    t.penetrating_courses += e.clearance.object_frames > 0;
+    t.overlapping_courses += e.clearance.character_frames > 0;
+    if (t.courses == 1 || e.clearance.min_object < t.min_object_clearance) {
+      t.min_object_clearance = e.clearance.min_object;
+      t.min_object_what = e.name + ": " + e.clearance.min_object_what;
+    }
+    if (t.courses == 1 || e.clearance.min_character < t.min_character_clearance) {
+      t.min_character_clearance = e.clearance.min_character;
+      t.min_character_what = e.name + ": " + e.clearance.min_character_what;
+    }
   }
   t.path_median = percentile(ratios, 50.0f);
   t.path_p95 = percentile(ratios, 95.0f);
@@ -355,6 +375,16 @@ CourseTotals course_totals(const std::vector<CourseEvaluation>& courses) {
                       std::to_string(t.circling_courses) + " courses circling (" + number(t.circling_seconds, 1) +
                           " s); needed none",
                       t.circling_courses == 0});
+  t.checks.push_back({"no_penetration",
+                      std::to_string(t.penetrating_courses) + " courses with a body more than " +
+                          number(100.0f * clearance_metric::kObjectTolerance, 0) + " cm inside an object (deepest: " +
+                          t.min_object_what + "); needed none",
+                      t.courses > 0 && t.penetrating_courses == 0});
+  t.checks.push_back({"no_overlap",
+                      std::to_string(t.overlapping_courses) + " courses with bodies overlapping more than " +
+                          number(100.0f * clearance_metric::kCharacterTolerance, 0) + " cm (deepest: " +
+                          t.min_character_what + "); needed none",
+                      t.courses > 0 && t.overlapping_courses == 0});
   return t;
 }
 
@@ -382,6 +412,7 @@ nlohmann::json course_json(const CourseEvaluation& e) {
     lj["alpha_at_1m"] = l.alpha_at_1m >= 0.0f ? nlohmann::json(l.alpha_at_1m) : nlohmann::json(nullptr);
     if (l.object >= 0) lj["object"] = l.object;
     if (l.target_character >= 0) lj["target_character"] = l.target_character;
+    lj["min_clearance_m"] = number_or_null(l.min_clearance);
     j["launches"].push_back(lj);
   }
   j["kept_preparation"] = nlohmann::json::array();
@@ -393,6 +424,7 @@ nlohmann::json course_json(const CourseEvaluation& e) {
                     {"relax_times_s", e.relax_times},
                     {"unrelaxed_episodes", e.unrelaxed_episodes}};
   j["circling"] = {{"seconds", e.circling_seconds}, {"visits", e.circling_visits}, {"max_visit_turn_deg", e.max_visit_turn_deg}};
+  j["clearance"] = clearance_json(e.clearance);
   return j;
 }
 
@@ -421,6 +453,12 @@ nlohmann::json course_totals_json(const CourseTotals& t) {
   j["kept_pairs"] = t.kept_pairs;
   j["kept_min_alpha"] = number_or_null(t.kept_min);
   j["kept_median_alpha"] = number_or_null(t.kept_median);
+  j["penetrating_courses"] = t.penetrating_courses;
+  j["overlapping_courses"] = t.overlapping_courses;
+  j["min_object_clearance_m"] = number_or_null(t.min_object_clearance);
+  j["min_object_clearance"] = t.min_object_what;
+  j["min_character_clearance_m"] = number_or_null(t.min_character_clearance);
+  j["min_character_clearance"] = t.min_character_what;
   nlohmann::json checks = nlohmann::json::object();
   for (const CourseCheck& c : t.checks) checks[c.name] = {{"pass", c.pass}, {"measure", c.measure}};
   j["checks"] = checks;

@@ -28,6 +28,9 @@
 //   of such visits. The heading is averaged over the last kHeadingWindow seconds first: the pelvis (the
 //   root) swings its yaw a few degrees either way in every stride, some 15 degrees a second summed while
 //   walking straight, which over a long visit would add up to a circle that is not there.
+// - Clearance (clearance.h), every character: the frames on which a body is more than 1 cm inside an
+//   object or two bodies overlap by more than 2 cm, the nearest approach to an object and between bodies
+//   with who and what, and per launch of the user the nearest approach while its target motion played.
 // A run (evaluate_course) lasts until the goal is reached and no character plays a target motion, plus
 // kRelaxSeconds (relaxing at the goal is measured), and at most kBaseSeconds + kSecondsPerMetre per metre
 // of straight route.
@@ -41,6 +44,7 @@
 #include <glm/vec2.hpp>
 #include <nlohmann/json.hpp>
 
+#include "engine/world/clearance.h"
 #include "engine/world/scenario.h"
 #include "engine/world/world.h"
 
@@ -76,6 +80,7 @@ struct CourseLaunch {
   glm::vec2 at{0.0f};         // where that stood at the launch (the user's position when neither)
   float alpha_at_launch = 0;
   float alpha_at_1m = -1;     // -1: not measured
+  float min_clearance = 0;    // m: the nearest approach while its target motion played (LaunchClearance)
 };
 
 struct KeptPreparation {
@@ -102,6 +107,7 @@ struct CourseEvaluation {
   int circling_visits = 0;
   float max_visit_turn_deg = 0;               // the largest turn of any visit
   std::vector<float> times, alpha;            // the user's smoothed alpha per observed frame
+  ClearanceSummary clearance;                 // of every character (ClearanceLog)
 
   float no_source_mean() const;    // NaN without such ticks
   float no_source_median() const;
@@ -165,6 +171,7 @@ class CourseRecorder {
   glm::vec2 last_position_{0.0f};
   NoSourceMeter no_source_;
   CirclingMeter circling_;
+  ClearanceLog clearance_;
 };
 
 // The longest run for a course (the header's limit), s.
@@ -200,6 +207,9 @@ struct CourseTotals {
   float circling_seconds = 0;
   int kept_pairs = 0;
   float kept_min = 0, kept_median = 0;       // of the pairs' minima (NaN without pairs)
+  int penetrating_courses = 0, overlapping_courses = 0;  // courses with such frames (clearance.h)
+  float min_object_clearance = 0, min_character_clearance = 0;  // m, over every course
+  std::string min_object_what, min_character_what;              // where (course name and what)
   std::vector<CourseCheck> checks;
   bool pass() const;
 };

@@ -307,9 +307,10 @@ std::vector<LaunchEvaluation> Evaluation::launches() const {
 // Recorder
 
 EvaluationRecorder::EvaluationRecorder(const World& world, const EvaluationReference& reference)
-    : reference_(&reference), tracks_(world.characters().size()) {
+    : reference_(&reference), clearance_(world), tracks_(world.characters().size()) {
   feature_.resize(static_cast<size_t>(reference.poses.dimension()));
   launches_seen_ = world.launches().size();
+  first_launch_record_ = launches_seen_;
   times_.push_back(world.time());
   for (size_t i = 0; i < tracks_.size(); ++i) {
     tracks_[i].in_target = world.characters()[i].in_target;
@@ -350,6 +351,7 @@ void EvaluationRecorder::measure_frame(const World& world, int index, Track& t, 
 }
 
 void EvaluationRecorder::observe(const World& world) {
+  clearance_.observe(world);
   const int tick = static_cast<int>(times_.size());
   times_.push_back(world.time());
   const float dt = world.params().runtime.fixed_dt;
@@ -388,6 +390,7 @@ Evaluation EvaluationRecorder::finish(const World& world, EvaluationMethod metho
   e.times = times_;
   e.user = world.user();
   e.synthesis_calls = synthesis_calls_;
+  e.clearance = clearance_.summary;
   e.synthesis_us_per_frame = synthesis_calls_ > 0 ? 1000.0 * synthesis_ms_ / static_cast<double>(synthesis_calls_) : kNaN;
   const float dt = world.params().runtime.fixed_dt;
   const int fade_ticks = static_cast<int>(std::lround(world.params().graph.blend_s / dt));
@@ -419,6 +422,8 @@ Evaluation EvaluationRecorder::finish(const World& world, EvaluationMethod metho
       l.prep_lead_s = preparation_lead(t.alpha, L, earliest, dt);
       l.peak_decel_mps2 = peak_deceleration(t.positions, dt, L - window_ticks, L + fade_ticks);
       l.speed_at_launch_mps = speed_at(t.positions, dt, L);
+      const size_t record = static_cast<size_t>(t.launch_records[k]) - first_launch_record_;
+      l.min_clearance = record < clearance_.launches.size() ? clearance_.launches[record].min_clearance : kNaN;
       ce.launches.push_back(l);
     }
     e.characters.push_back(std::move(ce));
@@ -464,6 +469,7 @@ nlohmann::json launch_json(const LaunchEvaluation& l, int character) {
   j["speed_at_launch_mps"] = l.speed_at_launch_mps;
   if (l.object >= 0) j["object"] = l.object;
   if (l.target_character >= 0) j["target_character"] = l.target_character;
+  j["min_clearance_m"] = number_or_null(l.min_clearance);
   return j;
 }
 
@@ -488,6 +494,7 @@ nlohmann::json evaluation_json(const Evaluation& e) {
   put_frame_metrics(total, e.totals());
   total["synthesis_us_per_frame"] = number_or_null(e.synthesis_us_per_frame);
   total["synthesis_calls"] = e.synthesis_calls;
+  total["clearance"] = clearance_json(e.clearance);
   j["total"] = total;
   j["characters"] = nlohmann::json::array();
   for (const CharacterEvaluation& c : e.characters) {

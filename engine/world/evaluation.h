@@ -57,6 +57,7 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/motion/motion_set.h"
+#include "engine/world/clearance.h"
 #include "engine/world/world.h"
 
 namespace prep {
@@ -159,6 +160,7 @@ struct LaunchEvaluation {
   float prep_lead_s = 0;
   float peak_decel_mps2 = 0;
   float speed_at_launch_mps = 0;  // over the kSpeedSpan before the launch
+  float min_clearance = 0;        // m: the nearest approach while its target motion played (clearance.h)
 };
 
 // Sums over frames; the metrics are their means.
@@ -197,6 +199,7 @@ struct Evaluation {
   int user = 0;
   double synthesis_us_per_frame = 0;
   long synthesis_calls = 0;       // character-frames synthesized by Synthesizer::step
+  ClearanceSummary clearance;     // every character's bodies against the objects and each other
 
   FrameTotals totals() const;                 // over every character
   std::vector<LaunchEvaluation> launches() const;  // every character's, in time order
@@ -226,9 +229,11 @@ class EvaluationRecorder {
   void measure_frame(const World& world, int index, Track& t, int tick);
 
   const EvaluationReference* reference_;
+  ClearanceLog clearance_;
   std::vector<Track> tracks_;
   std::vector<float> times_;
   size_t launches_seen_ = 0;
+  size_t first_launch_record_ = 0;  // World::launches() before the first frame (the clearance log skips them)
   double synthesis_ms_ = 0;
   long synthesis_calls_ = 0;
   std::vector<glm::vec3> positions_;

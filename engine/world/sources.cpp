@@ -21,6 +21,9 @@ using floor_plane::left_of;
 
 const float kCos45 = std::cos(kPi / 4.0f);
 constexpr float kArrivalFacing = 75.0f * kPi / 180.0f;  // rad off an obstacle's crossing (update_arrival)
+// rad off an obstacle's crossing at which it is launched at: an obstacle crossed at a slant passes the body
+// under (or over) it along a longer, lower line than the clip was made for.
+constexpr float kSquareCrossing = 10.0f * kPi / 180.0f;
 constexpr float kSourceKeptAngle = 2.0f * kPi / 3.0f;   // 120 degrees (choose_source)
 constexpr float kSourceKeptWidth = 1.0f;                // m beyond an obstacle's end (choose_source)
 constexpr float kSpanMargin = 0.5f;  // m: a launch point stays this far inside an obstacle's ends (launch_point)
@@ -157,9 +160,11 @@ World::Approach World::approach(int index) const {
     a.to_launch = along - t.reach;
     a.ahead = along > 0.0f && glm::dot(fwd, n) >= kCos45;
     a.facing = along > 0.0f && glm::dot(fwd, n) >= std::cos(kArrivalFacing);
+    a.square = a.ahead && glm::dot(fwd, n) >= std::cos(kSquareCrossing);
   } else if (d > 1e-4f) {
     a.to_launch = d - t.reach;
     a.ahead = glm::dot(to_object, fwd) >= kCos45 * d;
+    a.square = a.ahead;
   }
   return a;
 }
@@ -184,11 +189,13 @@ void World::update_arrival(int index) {
   c.to_launch = std::numeric_limits<float>::infinity();
   c.source_ahead = false;
   rt.facing = false;
+  rt.square = false;
   if (c.has_source && !c.in_target) {
     const Approach a = approach(index);
     c.to_launch = a.to_launch;
     c.source_ahead = a.ahead;
     rt.facing = a.facing;
+    rt.square = a.square;
     const glm::vec2 to_object = c.source_object_position - c.position;
     const float d = glm::length(to_object);
     // How fast the source itself comes toward the character (an opponent walking in), smoothed over about

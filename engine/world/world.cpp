@@ -280,6 +280,9 @@ void World::try_auto_launch(int index) {
   const bool on_point = c.to_launch <= 0.0f;
   const bool ready = c.arrived && c.alpha >= params_.runtime.launch_alpha;
   if (!on_point && !ready) return;
+  // An obstacle is crossed square: the arrival turns the character to it first (steer_tightly). Without
+  // preparation (the naive baseline) nothing squares it up; it launches as it comes.
+  if (preparation_ && params_.runtime.tight_turn_deg_per_s > 0.0f && !runtime_[static_cast<size_t>(index)]->square) return;
   if (start_target(index, c.prepared_for, c.source_object, c.source_character, true) && c.control == Control::Opponent)
     c.last_attack = time_;
 }

@@ -334,6 +334,7 @@ class World {
     float to_launch = 0.0f;
     bool ahead = false;
     bool facing = false;  // an obstacle within kArrivalFacing of its crossing: close enough to arrive at
+    bool square = false;  // ahead, and an obstacle within kSquareCrossing of its crossing: launched at
   };
   Approach approach(int index) const;
   bool next_source_in_range(int index) const;

@@ -47,6 +47,7 @@ struct World::Runtime {
   float speed = 0.0f;            // m/s over the floor, smoothed over about half a second (steering)
   float stride_scale = 1.0f;     // the tight turn's stride, following its target (steering.h)
   bool facing = false;           // the source obstacle is faced closely enough to arrive at (Approach)
+  bool square = false;           // ... and to launch at (Approach)
   std::vector<glm::vec3> positions, centroids;
   std::vector<glm::quat> rotations;
 };
