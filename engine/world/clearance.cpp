@@ -92,7 +92,31 @@ float segment_segment_distance(glm::vec3 p1, glm::vec3 q1, glm::vec3 p2, glm::ve
   return glm::length(p1 + s * d1 - (p2 + t * d2));
 }
 
+namespace {
+
+// The signed gap between a placed capsule and one solid of an object (positioned at `at`, turned `heading`).
+float capsule_solid_distance(const PlacedCapsule& pc, const ObjectSolid& s, glm::vec2 at, float heading) {
+  const glm::vec3 a = to_object_frame(pc.a, at, heading), b = to_object_frame(pc.b, at, heading);
+  if (s.sphere) return glm::length(closest_on_segment(s.centre, a, b) - s.centre) - 0.5f * s.extents.x - pc.radius;
+  return segment_box_distance(a, b, s.centre, 0.5f * s.extents) - pc.radius;
+}
+
+}  // namespace
+
 ClearanceMeter::ClearanceMeter(const Skeleton& skeleton) : volumes_(skeleton) {}
+
+float ClearanceMeter::feet_to_object(const World& world, int character, int object) const {
+  const WorldObject& o = world.objects()[static_cast<size_t>(object)];
+  const glm::vec2 at(o.position.x, o.position.z);
+  float gap = std::numeric_limits<float>::infinity();
+  for (const ObjectSolid& s : object_solids(o.spec.type, o.spec.size))
+    for (size_t c = 0; c < volumes_.capsules().size(); ++c) {
+      const BodyPart part = volumes_.capsules()[c].part;
+      if (part == BodyPart::LeftFoot || part == BodyPart::RightFoot)
+        gap = std::min(gap, capsule_solid_distance(placed_[static_cast<size_t>(character)][c], s, at, o.spec.heading));
+    }
+  return gap;
+}
 
 void ClearanceMeter::measure(const World& world) {
   const auto& characters = world.characters();
@@ -122,11 +146,8 @@ void ClearanceMeter::measure(const World& world) {
       if (glm::length(at - root) > object_reach + kBodyReach) continue;
       const std::vector<ObjectSolid> solids = object_solids(o.spec.type, o.spec.size);
       for (size_t c = 0; c < capsules.size(); ++c) {
-        const PlacedCapsule& pc = placed_[i][c];
-        const glm::vec3 a = to_object_frame(pc.a, at, o.spec.heading), b = to_object_frame(pc.b, at, o.spec.heading);
         for (const ObjectSolid& s : solids) {
-          const float d = s.sphere ? glm::length(closest_on_segment(s.centre, a, b) - s.centre) - 0.5f * s.extents.x - pc.radius
-                                   : segment_box_distance(a, b, s.centre, 0.5f * s.extents) - pc.radius;
+          const float d = capsule_solid_distance(placed_[i][c], s, at, o.spec.heading);
           if (d < out.object.distance) out.object = Nearest{d, static_cast<int>(c), static_cast<int>(k), -1, s.part, -1};
           if (d < -tolerance_objects) deep[c] = true;
         }
@@ -187,7 +208,12 @@ void ClearanceLog::observe(const World& world) {
   const auto& chars = world.characters();
   for (; launches_seen_ < world.launches().size(); ++launches_seen_) {
     const LaunchRecord& r = world.launches()[launches_seen_];
-    launches.push_back({r.character, r.action, r.time, std::numeric_limits<float>::infinity(), ""});
+    LaunchClearance l;
+    l.character = r.character;
+    l.action = r.action;
+    l.time = r.time;
+    launches.push_back(l);
+    object_of_.push_back(r.object);
     open_[static_cast<size_t>(r.character)] = static_cast<int>(launches.size()) - 1;
   }
   bool object_deep = false, character_deep = false;
@@ -215,6 +241,10 @@ void ClearanceLog::observe(const World& world) {
         l.min_clearance = n.distance;
         l.nearest = meter_.describe(world, static_cast<int>(i), n) + when;
       }
+      const int ball = object_of_[static_cast<size_t>(open)];
+      if (l.action == TargetAction::Kick && ball >= 0 && std::isnan(l.strike_gap) &&
+          glm::length(world.objects()[static_cast<size_t>(ball)].velocity) > 0.0f)
+        l.strike_gap = meter_.feet_to_object(world, static_cast<int>(i), ball);
     }
   }
   s.object_frames += object_deep;

@@ -60,6 +60,8 @@ class ClearanceMeter {
   const std::vector<CharacterClearance>& result() const { return result_; }
   // The placed capsules of character i this frame (after measure).
   const std::vector<PlacedCapsule>& capsules(int character) const { return placed_[static_cast<size_t>(character)]; }
+  // m: the gap between character i's feet (either) and object k's solids this frame (after measure).
+  float feet_to_object(const World& world, int character, int object) const;
   // "head in the rail of the bar at (0.0, 4.0)": who and what, for reports.
   std::string describe(const World& world, int character, const Nearest& n) const;
 
@@ -79,6 +81,9 @@ struct LaunchClearance {
   float time = 0;                  // s: the launch
   float min_clearance = std::numeric_limits<float>::infinity();  // m: nearest object (punch: other body)
   std::string nearest;             // what it was (ClearanceMeter::describe)
+  // A kick at a ball: the gap between the nearer foot and the ball's surface on the frame the ball is struck
+  // (it starts to roll on the next); NaN until then.
+  float strike_gap = std::numeric_limits<float>::quiet_NaN();
 };
 
 struct ClearanceSummary {
@@ -105,6 +110,7 @@ class ClearanceLog {
   ClearanceMeter meter_;
   size_t launches_seen_ = 0;
   std::vector<int> open_;  // per character: its launch whose target motion plays (index into launches), -1
+  std::vector<int> object_of_;  // per launch: the object it was launched at (-1: none)
 };
 
 }  // namespace prep

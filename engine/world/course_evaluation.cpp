@@ -206,6 +206,7 @@ CourseEvaluation CourseRecorder::finish(const World& world) const {
   size_t next = 0;
   for (const LaunchClearance& l : clearance_.launches) {
     if (l.character != world.user() || next >= e.launches.size()) continue;
+    e.launches[next].strike_gap = l.strike_gap;
     e.launches[next++].min_clearance = l.min_clearance;
   }
   e.no_source_alpha = no_source.alpha();
@@ -413,6 +414,7 @@ nlohmann::json course_json(const CourseEvaluation& e) {
     if (l.object >= 0) lj["object"] = l.object;
     if (l.target_character >= 0) lj["target_character"] = l.target_character;
     lj["min_clearance_m"] = number_or_null(l.min_clearance);
+    if (l.action == TargetAction::Kick) lj["strike_gap_m"] = number_or_null(l.strike_gap);
     j["launches"].push_back(lj);
   }
   j["kept_preparation"] = nlohmann::json::array();

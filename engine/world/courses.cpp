@@ -67,7 +67,6 @@ const ObstacleSizes& obstacle_sizes() {
   return sizes;
 }
 
-constexpr float kBallSize = 0.22f;
 constexpr float kOpponentFootprint = 0.6f;
 constexpr float kObjectGap = 0.3f;    // m kept between two objects' footprints
 constexpr float kPointGap = 1.0f;     // m kept between a footprint and the start, a waypoint or the goal
@@ -224,7 +223,7 @@ bool draw_course(const CourseOptions& o, Random& rng, Scenario& s) {
         case Item::Ball:
           obj.type = ObjectType::Ball;
           obj.action = TargetAction::Kick;
-          obj.size = glm::vec3(kBallSize);
+          obj.size = glm::vec3(kBallDiameter);
           obj.position = at + rng.uniform(-0.2f, 0.2f) * side;
           break;
         case Item::Bar:

@@ -424,6 +424,7 @@ Evaluation EvaluationRecorder::finish(const World& world, EvaluationMethod metho
       l.speed_at_launch_mps = speed_at(t.positions, dt, L);
       const size_t record = static_cast<size_t>(t.launch_records[k]) - first_launch_record_;
       l.min_clearance = record < clearance_.launches.size() ? clearance_.launches[record].min_clearance : kNaN;
+      l.strike_gap = record < clearance_.launches.size() ? clearance_.launches[record].strike_gap : kNaN;
       ce.launches.push_back(l);
     }
     e.characters.push_back(std::move(ce));
@@ -470,6 +471,7 @@ nlohmann::json launch_json(const LaunchEvaluation& l, int character) {
   if (l.object >= 0) j["object"] = l.object;
   if (l.target_character >= 0) j["target_character"] = l.target_character;
   j["min_clearance_m"] = number_or_null(l.min_clearance);
+  if (l.action == TargetAction::Kick) j["strike_gap_m"] = number_or_null(l.strike_gap);
   return j;
 }
 

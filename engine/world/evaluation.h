@@ -161,6 +161,7 @@ struct LaunchEvaluation {
   float peak_decel_mps2 = 0;
   float speed_at_launch_mps = 0;  // over the kSpeedSpan before the launch
   float min_clearance = 0;        // m: the nearest approach while its target motion played (clearance.h)
+  float strike_gap = 0;           // m: a kick's foot to the ball's surface at the strike (NaN: not struck)
 };
 
 // Sums over frames; the metrics are their means.

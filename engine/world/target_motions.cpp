@@ -10,10 +10,12 @@
 #include "engine/graph/reference_posture.h"
 #include "engine/library/builtin.h"
 #include "engine/library/generated.h"
+#include "engine/motion/body_volumes.h"
 #include "engine/motion/kinematics.h"
 #include "engine/synthesis/preparation_run.h"
 #include "engine/util/error.h"
 #include "engine/util/files.h"
+#include "engine/world/clearance.h"
 #include "engine/world/floor.h"
 #include "engine/world/policy_cache.h"
 #include "engine/world/world.h"
@@ -86,6 +88,82 @@ glm::vec2 interaction_point(const MotionSet& set, const MotionClip& mc, TargetAc
 
 std::optional<Role> role_of(TargetAction a) { return parse_role(role_name_of(a)); }
 
+// The strike of a kick or punch (TargetMotion::strike_frame): between T_t and the effector's farthest reach
+// (`peak_frame`), the frame at which it moves forward fastest, where a strike meets its target. For a kick
+// the ball's centre is then placed where the kicking foot's capsules just touch a ball of kBallDiameter
+// (forward of the toe tip along the foot's travel on the floor); for a punch the point is the wrist.
+struct Strike {
+  int frame = -1;
+  glm::vec2 target{0.0f};  // the ball's centre (kick) or the wrist (punch), clip coordinates on the floor
+  float speed = 0.0f;      // m/s: the effector's speed over the floor there
+};
+
+Strike strike_of(const MotionSet& set, const MotionClip& mc, TargetAction action, int peak_frame) {
+  Strike s;
+  const bool kick = action == TargetAction::Kick;
+  if (peak_frame < 0 || !(kick || action == TargetAction::PunchLeft || action == TargetAction::PunchRight)) return s;
+  const Clip& clip = mc.clip;
+  const Skeleton& skeleton = *set.skeleton;
+  const int t_t = std::clamp(mc.target_frame, 0, clip.frame_count() - 1);
+  std::vector<glm::vec3> positions;
+  std::vector<glm::quat> rotations;
+  // The effector: the toe tip that reaches farthest at the peak (kick), the punching wrist.
+  auto effector_at = [&](int frame, int side) {
+    forward_kinematics(skeleton, clip.frames[static_cast<size_t>(frame)], positions, &rotations);
+    if (!kick) return positions[static_cast<size_t>(set.body.arms[static_cast<size_t>(side)].wrist)];
+    const int tip = set.body.legs[static_cast<size_t>(side)].toe_tip_joint;
+    return skeleton.joints[static_cast<size_t>(tip)].has_end_site ? end_site_position(skeleton, tip, positions, rotations)
+                                                                  : positions[static_cast<size_t>(tip)];
+  };
+  const Pose& ref = clip.frames[static_cast<size_t>(t_t)];
+  const glm::vec2 fwd = forward_of(heading_of(ref.rotations[0]));
+  int side = action == TargetAction::PunchLeft ? kLeft : kRight;
+  if (kick) {
+    float best = -std::numeric_limits<float>::infinity();
+    for (int k : {kLeft, kRight}) {
+      if (set.body.legs[static_cast<size_t>(k)].toe_tip_joint < 0) continue;
+      const float ahead = glm::dot(floor_xz(effector_at(peak_frame, k)), fwd);
+      if (ahead > best) best = ahead, side = k;
+    }
+  }
+  float fastest = -1.0f;
+  for (int f = std::max(t_t, 1); f <= peak_frame; ++f) {
+    const glm::vec2 step = floor_xz(effector_at(f, side)) - floor_xz(effector_at(f - 1, side));
+    const float v = glm::dot(step, fwd) * clip.fps;
+    if (v > fastest) fastest = v, s.frame = f, s.speed = glm::length(step) * clip.fps;
+  }
+  if (s.frame < 0) return s;
+  const glm::vec3 tip = effector_at(s.frame, side);
+  s.target = floor_xz(tip);
+  if (!kick) return s;
+  // The ball: slid forward from the toe tip until the foot's capsules (ankle to toe tip) just touch it.
+  const glm::vec3 travel3 = tip - effector_at(s.frame - 1, side);
+  glm::vec2 travel = floor_xz(travel3);
+  travel = glm::length(travel) > 1e-6f ? glm::normalize(travel) : fwd;
+  effector_at(s.frame, side);  // FK of the strike frame again (effector_at(s.frame - 1) replaced it)
+  const BodyVolumes volumes(skeleton);
+  std::vector<PlacedCapsule> placed;
+  volumes.place(positions, rotations, placed);
+  const BodyPart foot = side == kLeft ? BodyPart::LeftFoot : BodyPart::RightFoot;
+  const float r = 0.5f * kBallDiameter;
+  auto gap = [&](float slide) {  // the foot's nearest capsule to a ball slid this far along the travel
+    const glm::vec2 c = floor_xz(tip) + slide * travel;
+    const glm::vec3 centre(c.x, r, c.y);
+    float g = std::numeric_limits<float>::infinity();
+    for (size_t k = 0; k < placed.size(); ++k)
+      if (volumes.capsules()[k].part == foot)
+        g = std::min(g, segment_segment_distance(placed[k].a, placed[k].b, centre, centre) - placed[k].radius - r);
+    return g;
+  };
+  float lo = -0.3f, hi = 0.6f;  // the gap grows with the slide here: bisect for the touching slide
+  for (int k = 0; k < 40; ++k) {
+    const float mid = 0.5f * (lo + hi);
+    (gap(mid) < 0.0f ? lo : hi) = mid;
+  }
+  s.target = floor_xz(tip) + hi * travel;
+  return s;
+}
+
 constexpr float kReleaseClearance = 0.1f;    // m: every joint this far beyond the obstacle's far side
 constexpr float kReleaseAfterStrike = 0.2f;  // s after a strike's farthest reach (the hand or foot returning)
 constexpr float kRailHalfDepth = 0.05f;      // m: half the depth of an obstacle's rail (scenario objects' 0.1)
@@ -154,6 +232,8 @@ WorldAssets make_world_assets(std::shared_ptr<const MotionSet> set, const Params
   if (a.idle_node < 0) throw InputError(source, "the motion set has neither a cyclic idle nor a cyclic walk clip");
 
   a.targets.resize(kTargetActionCount);
+  a.sweeps.resize(kTargetActionCount);
+  const BodyVolumes volumes(*set->skeleton);
   for (int k = 0; k < kTargetActionCount; ++k) {
     TargetMotion& t = a.targets[static_cast<size_t>(k)];
     t.action = static_cast<TargetAction>(k);
@@ -172,6 +252,17 @@ WorldAssets make_world_assets(std::shared_ptr<const MotionSet> set, const Params
     t.reach = glm::dot(q, forward_of(h));
     t.lateral = glm::dot(q, left_of(h));
     t.release_frame = release_frame_of(*set, mc, t.action, t.reference_frame, meets, peak_frame);
+    const Strike strike = strike_of(*set, mc, t.action, peak_frame);
+    if (strike.frame >= 0) {
+      t.strike_frame = strike.frame;
+      t.strike_speed = strike.speed;
+      if (t.action == TargetAction::Kick) {  // the ball is met where the foot touches it, not at the toe's farthest reach
+        t.reach = glm::dot(strike.target - origin, forward_of(h));
+        t.lateral = glm::dot(strike.target - origin, left_of(h));
+      }
+    }
+    if (t.action == TargetAction::Crawl || t.action == TargetAction::Duck || t.action == TargetAction::Jump)
+      a.sweeps[static_cast<size_t>(k)] = sweep_clip(*set, volumes, t.clip, t.reference_frame);
     for (int f = t.reference_frame; f <= std::max(t.reference_frame, mc.target_frame); ++f)
       t.advance.push_back(glm::dot(floor_xz(mc.clip.frames[static_cast<size_t>(f)].root_position) - origin, forward_of(h)));
   }

@@ -9,7 +9,9 @@
 #include "engine/control/action_effects.h"
 #include "engine/control/arrival.h"
 #include "engine/motion/kinematics.h"
+#include "engine/synthesis/foot_ik.h"
 #include "engine/synthesis/preparation_run.h"
+#include "engine/util/error.h"
 #include "engine/world/floor.h"
 #include "engine/world/motion_stream.h"
 #include "engine/world/steering.h"
@@ -88,6 +90,24 @@ World::World(const Scenario& scenario, std::shared_ptr<const WorldAssets> assets
       add_character(o.position, o.heading, Control::Opponent, o.action, static_cast<int>(i));
     }
     objects_.push_back(w);
+    // An obstacle no clip of the set can pass (obstacle_fit.h) is refused here, named.
+    const TargetMotion& t = assets_->target(o.action);
+    if (is_across(o.type) && t.clip >= 0) {
+      const ObstacleFit fit = fit_obstacle(assets_->sweeps[static_cast<size_t>(o.action)], t, o.type, o.size);
+      if (!fit.possible) {
+        const bool over = o.type == ObjectType::Hurdle;
+        char what[320];
+        std::snprintf(what, sizeof what,
+                      "objects[%zu]: the %s at (%.2f, %.2f) has its %s at %.2f m; the %s clip '%s' %s %.2f m (%s by up to "
+                      "%.2f m), so it cannot be passed without going through it",
+                      i, object_type_name(o.type), o.position.x, o.position.y, over ? "top" : "underside", o.size.y,
+                      target_action_name(o.action), assets_->set->clips[static_cast<size_t>(t.clip)].clip.name.c_str(),
+                      over ? "clears boards up to" : "passes under rails down to",
+                      over ? fit.clip_height - kFitMargin + max_fit(o.action) : fit.clip_height + kFitMargin - max_fit(o.action),
+                      over ? "raised" : "lowered", max_fit(o.action));
+        throw InputError(scenario_.file.empty() ? scenario_.name : scenario_.file, what);
+      }
+    }
   }
   for (size_t i = 0; i < characters_.size(); ++i) {
     characters_[i].pose = runtime_[i]->stream.pose();
@@ -145,8 +165,8 @@ void World::step() {
   const float dt = params_.runtime.fixed_dt;
   time_ += dt;
   ++ticks_;
-  for (int i = 0; i < static_cast<int>(characters_.size()); ++i) step_character(i);
-  // Kicked balls roll and slow down (rolling resistance of grass, about 1.5 m/s^2).
+  // Kicked balls roll and slow down (rolling resistance of grass, about 1.5 m/s^2). Before the characters:
+  // a ball struck this tick is still where the foot met it in this tick's frame, and leaves on the next.
   for (auto& o : objects_) {
     const float speed = glm::length(o.velocity);
     if (speed <= 0.0f) continue;
@@ -155,6 +175,7 @@ void World::step() {
     o.position.x += o.velocity.x * dt;
     o.position.z += o.velocity.y * dt;
   }
+  for (int i = 0; i < static_cast<int>(characters_.size()); ++i) step_character(i);
   alpha_history_.push_back({time_, characters_[static_cast<size_t>(user_)].alpha});
   if (static_cast<int>(alpha_history_.size()) > kAlphaHistory) alpha_history_.erase(alpha_history_.begin());
   stage_times_.total_ms = ms_between(step_start, StageClock::now());
@@ -257,6 +278,33 @@ bool World::start_target(int index, TargetAction action, int object, int target_
   rt.target_object = object;
   rt.target_character = target_character;
   rt.struck = false;
+  rt.aim = glm::vec2(0.0f);
+  rt.aim_seconds = rt.aim_elapsed = 0.0f;
+  rt.fit = ObstacleFit{};
+  if (across_obstacle) {
+    const WorldObject& o = objects_[static_cast<size_t>(object)];
+    rt.fit = fit_obstacle(assets_->sweeps[static_cast<size_t>(action)], t, o.spec.type, o.spec.size);
+    // Launched short of the point (arrived and prepared, a little before it): the rest of the way is slid in
+    // before the target movement, so the clip meets the obstacle where it was made to.
+    if (at_source && c.to_launch > 0.0f && std::isfinite(c.to_launch)) {
+      glm::vec2 n = forward_of(o.spec.heading);
+      if (glm::dot(floor_xz(o.position) - c.position, n) < 0.0f) n = -n;
+      rt.aim = c.to_launch * n;
+      const float fps = assets_->set->clips[static_cast<size_t>(t.clip)].clip.fps;
+      rt.aim_seconds = std::max(0.3f, static_cast<float>(assets_->set->clips[static_cast<size_t>(t.clip)].target_frame - entry) / fps);
+    }
+  }
+  if (action == TargetAction::Kick && object >= 0 && t.strike_frame > entry) {
+    // Aim the kick: the clip entered here would meet a ball at its reach and lateral; the ball lies where
+    // it lies (the launch is rarely exactly on the point, and the ball may be off the facing). The
+    // difference is slid in over the wind-up, so the foot meets the ball's surface at the strike frame.
+    const WorldObject& ball = objects_[static_cast<size_t>(object)];
+    const glm::vec2 fwd = forward_of(c.heading), left = floor_plane::left_of(c.heading);
+    const glm::vec2 met = c.position + t.reach * fwd + t.lateral * left;
+    const glm::vec2 centre = floor_xz(ball.position);
+    rt.aim = centre - met - (0.5f * ball.spec.size.x - 0.5f * kBallDiameter) * fwd;  // a bigger ball is met sooner
+    rt.aim_seconds = static_cast<float>(t.strike_frame - entry) / assets_->set->clips[static_cast<size_t>(t.clip)].clip.fps;
+  }
   return true;
 }
 
@@ -367,6 +415,27 @@ void World::steer_tightly(int index) {
   if (move.angle != 0.0f || glm::length(move.offset) > 0.0f) rt.stream.move(move);
 }
 
+// The obstacle clip's fit (obstacle_fit.h) on this frame: the body raised or lowered by the lift's share,
+// the feet kept where the clip has them (lowered: both, so a swing foot does not sink into the floor;
+// raised: the feet on the floor, the others rise with the body in flight).
+void World::fit_pose(int index, Pose& pose) {
+  Runtime& rt = *runtime_[static_cast<size_t>(index)];
+  const float lift = rt.fit.lift * rt.fit.weight(static_cast<float>(rt.stream.clip_frame()));
+  if (lift == 0.0f) return;
+  const MotionSet& set = *assets_->set;
+  forward_kinematics(*set.skeleton, pose, rt.positions, &rt.rotations);
+  const FrameContacts contacts = rt.stream.contacts();
+  pose.root_position.y += lift;
+  const glm::vec3 forward = pose.rotations[0] * glm::vec3(0.0f, 0.0f, 1.0f);
+  for (int side : {kLeft, kRight}) {
+    if (lift > 0.0f && !contacts[static_cast<size_t>(side)].any()) continue;
+    const LegChain& leg = set.body.legs[static_cast<size_t>(side)];
+    const size_t ankle = static_cast<size_t>(leg.ankle);
+    solve_leg(*set.skeleton, leg, params_.ik, pose, rt.positions, rt.rotations, rt.positions[ankle], rt.rotations[ankle],
+              forward, glm::vec3(0.0f, lift, 0.0f));
+  }
+}
+
 void World::update_goal(int index) {
   WorldCharacter& c = characters_[static_cast<size_t>(index)];
   if (c.control != Control::User) return;
@@ -415,8 +484,19 @@ void World::step_character(int index) {
   rt.stream.advance(dt);
   if (!c.in_target) steer_tightly(index);
 
+  if (c.in_target && rt.aim_elapsed < rt.aim_seconds) {
+    // The strike's aim (start_target), slid in with a smoothstep's share of this tick.
+    const float before = smoothstep(rt.aim_elapsed / rt.aim_seconds);
+    rt.aim_elapsed = std::min(rt.aim_seconds, rt.aim_elapsed + dt);
+    FloorTransform slide;
+    slide.offset = (smoothstep(rt.aim_elapsed / rt.aim_seconds) - before) * rt.aim;
+    rt.stream.move(slide);
+  }
+
   if (c.in_target) {
     const MotionClip& mc = assets_->set->clips[static_cast<size_t>(c.clip)];
+    const TargetMotion& target = assets_->target(c.playing);
+    const int strike_frame = target.strike_frame >= 0 ? target.strike_frame : mc.target_frame;
     if (rt.stream.node() != c.clip) {
       // Back to locomotion through the graph edge: the controller resumes from the core motion playing, at
       // the kept level when the next source is in range, else at alpha 0 (the edge leads into the plain
@@ -428,11 +508,12 @@ void World::step_character(int index) {
       rt.next_decision = time_;
       rt.reseed = true;
       rt.begin_fade(c.pose, params_.graph.blend_s);
-    } else if (!rt.struck && rt.stream.clip_frame() >= mc.target_frame) {
-      rt.struck = true;  // the target movement begins: the ball flies, the opponent is hit
+    } else if (!rt.struck && rt.stream.clip_frame() >= strike_frame) {
+      rt.struck = true;  // the strike lands: the ball flies, the opponent is hit
       if (c.playing == TargetAction::Kick && rt.target_object >= 0) {
-        // The ball leaves at a typical pass speed (6 m/s) along the kick.
-        objects_[static_cast<size_t>(rt.target_object)].velocity = 6.0f * forward_of(c.heading);
+        // The ball leaves along the kick at 1.3 times the foot's speed: a light ball struck by a much heavier
+        // leg with a restitution of about 0.5 (at least a pass's 6 m/s).
+        objects_[static_cast<size_t>(rt.target_object)].velocity = std::max(6.0f, 1.3f * target.strike_speed) * forward_of(c.heading);
       }
       if (rt.target_character >= 0 && characters_[static_cast<size_t>(rt.target_character)].control == Control::Opponent)
         characters_[static_cast<size_t>(rt.target_character)].defeated = true;
@@ -452,6 +533,7 @@ void World::step_character(int index) {
   c.alpha = alpha;
   if (c.in_target) {
     out = rt.stream.pose();
+    if (rt.fit.lift != 0.0f) fit_pose(index, out);
     c.report = SynthesisReport{};
   } else {
     const TargetMotion& t = assets_->target(c.prepared_for);

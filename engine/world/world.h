@@ -78,6 +78,7 @@
 #include "engine/motion/motion_set.h"
 #include "engine/motion/support_polygon.h"
 #include "engine/synthesis/synthesizer.h"
+#include "engine/world/obstacle_fit.h"
 #include "engine/world/scenario.h"
 
 namespace prep {
@@ -103,7 +104,14 @@ struct TargetMotion {
   // clip, between two close obstacles) enters the clip at the frame that has come as far (entry_frame).
   std::vector<float> advance;
   int entry_frame(float past_launch_point) const;
+  // Kicks and punches: the frame at which the strike meets its target (the effector's fastest forward
+  // movement before its farthest reach; -1: none) and the effector's speed there (m/s). A kick's reach and
+  // lateral place the ball where the foot touches a ball of kBallDiameter at this frame; the ball leaves then.
+  int strike_frame = -1;
+  float strike_speed = 0.0f;
 };
+
+constexpr float kBallDiameter = 0.22f;  // m: a football; the kick's reach is for this size
 
 // Everything a world needs that does not depend on the scenario: the motion set, its graph, the
 // synthesizer, the target motions and the controller's policy. Shared by worlds (and threads) read-only.
@@ -113,6 +121,7 @@ struct WorldAssets {
   std::shared_ptr<const MotionGraph> graph;
   std::shared_ptr<const Synthesizer> synthesizer;
   std::vector<TargetMotion> targets;   // indexed by TargetAction
+  std::vector<ClipSweep> sweeps;       // indexed by TargetAction: the body over each obstacle clip (obstacle_fit.h)
   std::vector<int> core_nodes;         // graph node of each policy core motion (index = policy motion)
   int idle_node = -1;                  // where characters start and stop (the idle core clip, else walk)
   std::shared_ptr<const Policy> policy;
@@ -341,6 +350,7 @@ class World {
   int kept_level() const;
   bool release_for_next_source(int index);
   void steer_tightly(int index);
+  void fit_pose(int index, Pose& pose);
 
   Scenario scenario_;
   std::shared_ptr<const WorldAssets> assets_;

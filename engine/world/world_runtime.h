@@ -37,7 +37,12 @@ struct World::Runtime {
     fade_total = fade_left = std::max(seconds, fade_left);
   }
   int target_object = -1, target_character = -1;
-  bool struck = false;           // the target movement (T_t) was reached
+  bool struck = false;           // the strike landed (TargetMotion::strike_frame, else T_t)
+  // Aiming a strike (World::aim_strike): the root is slid by `aim` in all between the launch and the strike
+  // frame, a smooth share per tick.
+  glm::vec2 aim{0.0f};
+  float aim_seconds = 0.0f, aim_elapsed = 0.0f;
+  ObstacleFit fit;               // the obstacle clip playing, fitted to its obstacle (obstacle_fit.h)
   // The source as last seen (for its speed toward the character and to notice a change of source).
   int source_key = -2;           // object index, or -(character index) - 3, or -2 for none
   glm::vec2 source_position{0.0f};
