@@ -152,14 +152,19 @@ std::string text_report(const prep::Evaluation& e) {
     << goal_cell(e) << "\n";
   for (const prep::CharacterEvaluation& c : e.characters)
     for (const prep::LaunchEvaluation& l : c.launches) {
-      char line[200];
+      char line[256];
       std::snprintf(line, sizeof line,
                     "  %6.2f s  character %d  %-11s alpha_at_launch %.2f  prep_lead %.2f s  peak_decel %5.1f m/s^2  "
-                    "speed %.2f m/s\n",
+                    "speed %.2f m/s  min clearance %.1f cm\n",
                     l.time, c.index, prep::target_action_name(l.action), l.alpha_at_launch, l.prep_lead_s, l.peak_decel_mps2,
-                    l.speed_at_launch_mps);
+                    l.speed_at_launch_mps, 100.0 * l.min_clearance);
       o << line;
+      if (l.action == prep::TargetAction::Kick) o << "           the foot meets the ball " << fixed(100.0 * l.strike_gap, 1) << " cm from its surface\n";
     }
+  const prep::ClearanceSummary& cl = e.clearance;
+  o << "  clearance: " << cl.object_frames << " frames with a body more than 1 cm inside an object, " << cl.character_frames
+    << " with bodies overlapping more than 2 cm; nearest to an object: " << (cl.min_object_what.empty() ? "-" : cl.min_object_what)
+    << "; nearest between bodies: " << (cl.min_character_what.empty() ? "-" : cl.min_character_what) << "\n";
   o << "  foot skate " << fixed(t.foot_skate_cm_per_frame(), 3) << " cm/frame, COM in support " << fixed(t.com_in_support(), 3)
     << " (" << t.balance_frames << " frames with alpha >= 0.3), pose plausibility " << fixed(t.pose_plausibility_cm(), 2)
     << " cm, synthesis " << fixed(e.synthesis_us_per_frame, 1) << " us/frame\n";
@@ -267,6 +272,10 @@ std::string totals_text(const prep::CourseTotals& t) {
   line("kept preparation (< 3 m)", std::to_string(t.kept_pairs) + " pairs, lowest alpha min " + fixed(t.kept_min, 2) +
                                        ", median " + fixed(t.kept_median, 2));
   line("circling", std::to_string(t.circling_courses) + " courses (" + fixed(t.circling_seconds, 1) + " s)");
+  line("body inside an object > 1 cm", std::to_string(t.penetrating_courses) + " courses; deepest " +
+                                           (t.min_object_what.empty() ? std::string("-") : t.min_object_what));
+  line("bodies overlapping > 2 cm", std::to_string(t.overlapping_courses) + " courses; deepest " +
+                                        (t.min_character_what.empty() ? std::string("-") : t.min_character_what));
   o << "checks:\n";
   for (const prep::CourseCheck& c : t.checks) o << "  " << (c.pass ? "pass" : "FAIL") << "  " << c.name << ": " << c.measure << "\n";
   o << (t.pass() ? "all checks pass\n" : "some checks fail\n");

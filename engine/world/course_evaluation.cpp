@@ -376,16 +376,6 @@ CourseTotals course_totals(const std::vector<CourseEvaluation>& courses) {
                       std::to_string(t.circling_courses) + " courses circling (" + number(t.circling_seconds, 1) +
                           " s); needed none",
                       t.circling_courses == 0});
-  t.checks.push_back({"no_penetration",
-                      std::to_string(t.penetrating_courses) + " courses with a body more than " +
-                          number(100.0f * clearance_metric::kObjectTolerance, 0) + " cm inside an object (deepest: " +
-                          t.min_object_what + "); needed none",
-                      t.courses > 0 && t.penetrating_courses == 0});
-  t.checks.push_back({"no_overlap",
-                      std::to_string(t.overlapping_courses) + " courses with bodies overlapping more than " +
-                          number(100.0f * clearance_metric::kCharacterTolerance, 0) + " cm (deepest: " +
-                          t.min_character_what + "); needed none",
-                      t.courses > 0 && t.overlapping_courses == 0});
   return t;
 }
 

@@ -208,7 +208,9 @@ struct CourseTotals {
   float circling_seconds = 0;
   int kept_pairs = 0;
   float kept_min = 0, kept_median = 0;       // of the pairs' minima (NaN without pairs)
-  int penetrating_courses = 0, overlapping_courses = 0;  // courses with such frames (clearance.h)
+  // Clearance (clearance.h), reported beside the checks: the courses with a body more than 1 cm inside an
+  // object, or two bodies overlapping more than 2 cm, on any frame.
+  int penetrating_courses = 0, overlapping_courses = 0;
   float min_object_clearance = 0, min_character_clearance = 0;  // m, over every course
   std::string min_object_what, min_character_what;              // where (course name and what)
   std::vector<CourseCheck> checks;

@@ -176,6 +176,7 @@ void World::step() {
     o.position.z += o.velocity.y * dt;
   }
   for (int i = 0; i < static_cast<int>(characters_.size()); ++i) step_character(i);
+  keep_apart();
   alpha_history_.push_back({time_, characters_[static_cast<size_t>(user_)].alpha});
   if (static_cast<int>(alpha_history_.size()) > kAlphaHistory) alpha_history_.erase(alpha_history_.begin());
   stage_times_.total_ms = ms_between(step_start, StageClock::now());
@@ -415,6 +416,56 @@ void World::steer_tightly(int index) {
   if (move.angle != 0.0f || glm::length(move.offset) > 0.0f) rt.stream.move(move);
 }
 
+// Characters keep their distance: two whose roots come closer than kPersonalSpace on the floor are set
+// apart along the line between them, each by the share of the closing that is its own (the one walking in
+// yields to the one standing; both half when neither moves toward the other). The whole character moves:
+// its stream, synthesis state, planted feet and balance history, so the next frame carries on from there.
+void World::keep_apart() {
+  const size_t n = characters_.size();
+  for (size_t i = 0; i < n; ++i)
+    for (size_t j = i + 1; j < n; ++j) {
+      WorldCharacter& a = characters_[i];
+      WorldCharacter& b = characters_[j];
+      const glm::vec2 d = b.position - a.position;
+      const float distance = glm::length(d);
+      if (distance >= kPersonalSpace) continue;
+      const glm::vec2 dir = distance > 1e-4f ? d / distance : forward_of(a.heading);
+      const float va = std::max(0.0f, glm::dot(runtime_[i]->velocity, dir));
+      const float vb = std::max(0.0f, -glm::dot(runtime_[j]->velocity, dir));
+      const float share_a = va + vb > 1e-4f ? va / (va + vb) : 0.5f;
+      const float gap = kPersonalSpace - distance;
+      displace(static_cast<int>(i), -share_a * gap * dir);
+      displace(static_cast<int>(j), (1.0f - share_a) * gap * dir);
+    }
+}
+
+void World::displace(int index, glm::vec2 offset) {
+  if (offset == glm::vec2(0.0f)) return;
+  WorldCharacter& c = characters_[static_cast<size_t>(index)];
+  Runtime& rt = *runtime_[static_cast<size_t>(index)];
+  const glm::vec3 o3(offset.x, 0.0f, offset.y);
+  FloorTransform shift;
+  shift.offset = offset;
+  rt.stream.move(shift);
+  rt.synthesis_previous_root += o3;
+  SynthesisState& s = rt.synthesis;
+  s.previous_locomotion_root += o3;
+  s.root_xz += offset;
+  for (FootPlant& f : s.feet) {
+    f.heel_anchor += o3;
+    f.toe_anchor += o3;
+  }
+  for (size_t side = 0; side < 2; ++side) {
+    s.previous_locomotion_feet.heel[side] += o3;
+    s.previous_locomotion_feet.toe[side] += o3;
+  }
+  for (glm::vec3& p : s.previous) p += o3;
+  for (glm::vec3& p : s.before_previous) p += o3;
+  c.pose.root_position += o3;
+  c.position += offset;
+  c.com += o3;
+}
+
 // The obstacle clip's fit (obstacle_fit.h) on this frame: the body raised or lowered by the lift's share,
 // the feet kept where the clip has them (lowered: both, so a swing foot does not sink into the floor;
 // raised: the feet on the floor, the others rise with the body in flight).
@@ -571,6 +622,7 @@ void World::step_character(int index) {
   const glm::vec2 previous_position = c.position;
   c.position = floor_xz(out.root_position);
   rt.speed += dt / (dt + 0.5f) * (glm::length(c.position - previous_position) / dt - rt.speed);
+  rt.velocity = (c.position - previous_position) / dt;
   c.heading = heading_of(rt.stream.pose().rotations[0]);
   const auto balance_start = StageClock::now();
   stage_times_.synthesis_ms += ms_between(synthesis_start, balance_start);

@@ -111,7 +111,9 @@ struct TargetMotion {
   float strike_speed = 0.0f;
 };
 
-constexpr float kBallDiameter = 0.22f;  // m: a football; the kick's reach is for this size
+constexpr float kBallDiameter = 0.22f;
+// m between two characters' roots on the floor, at least: two trunks and the arms swinging beside them.
+constexpr float kPersonalSpace = 0.62f;  // m: a football; the kick's reach is for this size
 
 // Everything a world needs that does not depend on the scenario: the motion set, its graph, the
 // synthesizer, the target motions and the controller's policy. Shared by worlds (and threads) read-only.
@@ -351,6 +353,8 @@ class World {
   bool release_for_next_source(int index);
   void steer_tightly(int index);
   void fit_pose(int index, Pose& pose);
+  void keep_apart();
+  void displace(int index, glm::vec2 offset);
 
   Scenario scenario_;
   std::shared_ptr<const WorldAssets> assets_;

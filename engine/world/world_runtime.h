@@ -50,6 +50,7 @@ struct World::Runtime {
   bool approach_seen = false, approach_from_far = false;  // the approach to it began more than 1 m away
   bool released = false;         // the target clip playing was left for prepared locomotion
   float speed = 0.0f;            // m/s over the floor, smoothed over about half a second (steering)
+  glm::vec2 velocity{0.0f};      // m/s over the floor, last tick (keep_apart)
   float stride_scale = 1.0f;     // the tight turn's stride, following its target (steering.h)
   bool facing = false;           // the source obstacle is faced closely enough to arrive at (Approach)
   bool square = false;           // ... and to launch at (Approach)

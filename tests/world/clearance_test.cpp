@@ -1,0 +1,198 @@
+// Clearance (clearance.h), obstacle clips fitted to their obstacle (obstacle_fit.h), kicks that meet the ball
+// and characters that keep their distance (world.h).
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <memory>
+#include <string>
+
+#include "engine/motion/body_volumes.h"
+#include "engine/motion/kinematics.h"
+#include "engine/util/error.h"
+#include "engine/world/clearance.h"
+#include "engine/world/evaluation.h"
+#include "engine/world/obstacle_fit.h"
+#include "engine/world/policy_cache.h"
+#include "engine/world/world.h"
+#include "tests/support/paths.h"
+
+using namespace prep;
+
+namespace {
+
+std::shared_ptr<const WorldAssets> clearance_test_assets() {
+  static std::shared_ptr<const WorldAssets> assets = [] {
+    const Scenario s = load_scenario(test::repo() + "/assets/scenarios/obstacles.json");
+    return prepare_world_assets(s, load_scenario_params(s), test::tmp_dir() + "/policy-cache");
+  }();
+  return assets;
+}
+
+Scenario shipped(const std::string& name) { return load_scenario(test::repo() + "/assets/scenarios/" + name + ".json"); }
+
+// Runs a scenario unattended to its end and logs its clearance.
+struct ClearanceRun {
+  ClearanceSummary summary;
+  std::vector<LaunchClearance> launches;
+  float min_root_distance = 1e9f;  // between any two characters, over the run
+  bool goal = false;
+};
+
+ClearanceRun run_clearance(const Scenario& s, float seconds = 40.0f) {
+  World world(s, clearance_test_assets());
+  world.set_auto(true);
+  ClearanceLog log(world);
+  ClearanceRun r;
+  world.run_until_done(seconds, 1.0f, [&](const World& w) {
+    log.observe(w);
+    const auto& c = w.characters();
+    for (size_t i = 0; i < c.size(); ++i)
+      for (size_t j = i + 1; j < c.size(); ++j) r.min_root_distance = std::min(r.min_root_distance, glm::length(c[i].position - c[j].position));
+  });
+  r.summary = log.summary;
+  r.launches = log.launches;
+  r.goal = world.goal_reached();
+  return r;
+}
+
+}  // namespace
+
+TEST_CASE("clearance primitives: segment to box and segment to segment, signed") {
+  const glm::vec3 half(0.5f, 0.1f, 0.05f);  // a rail 1 m wide, 0.2 m high, 0.1 m deep, centred at the origin
+  // Above it, parallel: 0.3 m from its top.
+  CHECK(segment_box_distance({-0.2f, 0.4f, 0.0f}, {0.2f, 0.4f, 0.0f}, glm::vec3(0.0f), half) == doctest::Approx(0.3f).epsilon(1e-3));
+  // Through it: as deep as the nearest face (the depth's half, 0.05 m).
+  CHECK(segment_box_distance({0.0f, 0.0f, -1.0f}, {0.0f, 0.0f, 1.0f}, glm::vec3(0.0f), half) == doctest::Approx(-0.05f).epsilon(1e-3));
+  // Beside its end, the nearest point inside the segment (not at an end): 0.1 m from the end face.
+  CHECK(segment_box_distance({0.6f, -1.0f, 0.0f}, {0.6f, 1.0f, 0.0f}, glm::vec3(0.0f), half) == doctest::Approx(0.1f).epsilon(1e-3));
+  // Off centre: the box moves with its centre.
+  CHECK(segment_box_distance({2.0f, 1.4f, 0.0f}, {2.0f, 2.0f, 0.0f}, {2.0f, 1.0f, 0.0f}, half) == doctest::Approx(0.3f).epsilon(1e-3));
+
+  // Skew segments 0.25 m apart, crossing in plan; parallel ones overlapping; and ends nearest.
+  CHECK(segment_segment_distance({-1, 0, 0}, {1, 0, 0}, {0, 0.25f, -1}, {0, 0.25f, 1}) == doctest::Approx(0.25f));
+  CHECK(segment_segment_distance({0, 0, 0}, {1, 0, 0}, {0.5f, 0.1f, 0}, {1.5f, 0.1f, 0}) == doctest::Approx(0.1f));
+  CHECK(segment_segment_distance({0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}) == doctest::Approx(1.0f));
+  CHECK(segment_segment_distance({0, 0, 0}, {0, 0, 0}, {0, 1, 0}, {0, 1, 0}) == doctest::Approx(1.0f));
+}
+
+TEST_CASE("body volumes: a capsule per bone with the body map's parts, and the head") {
+  const MotionSet& set = *clearance_test_assets()->set;
+  const BodyVolumes volumes(*set.skeleton);
+  int heads = 0, left_feet = 0, right_hands = 0;
+  for (const BodyCapsule& c : volumes.capsules()) {
+    CHECK(c.radius > 0.0f);
+    heads += c.part == BodyPart::Head;
+    left_feet += c.part == BodyPart::LeftFoot;
+    right_hands += c.part == BodyPart::RightHand;
+  }
+  CHECK(heads == 1);
+  CHECK(left_feet >= 1);
+  CHECK(right_hands >= 1);
+  // Placed on the first idle frame: the head's capsule sits above every other's top and below 2 m.
+  std::vector<glm::vec3> p;
+  std::vector<glm::quat> q;
+  forward_kinematics(*set.skeleton, set.clips[static_cast<size_t>(clearance_test_assets()->idle_node)].clip.frames[0], p, &q);
+  std::vector<PlacedCapsule> placed;
+  volumes.place(p, q, placed);
+  REQUIRE(placed.size() == volumes.capsules().size());
+  float head_top = 0.0f, others_top = 0.0f;
+  for (size_t k = 0; k < placed.size(); ++k) {
+    const float top = std::max(placed[k].a.y, placed[k].b.y) + placed[k].radius;
+    (volumes.capsules()[k].part == BodyPart::Head ? head_top : others_top) = std::max(
+        volumes.capsules()[k].part == BodyPart::Head ? head_top : others_top, top);
+  }
+  CHECK(head_top > others_top);
+  CHECK(head_top > 1.5f);
+  CHECK(head_top < 2.0f);
+}
+
+TEST_CASE("clearance of a body standing in a bar: the penetration, the part and the object named") {
+  Scenario s = shipped("obstacles");
+  s.objects.resize(1);
+  s.objects[0].type = ObjectType::Beam;
+  s.objects[0].action = TargetAction::Duck;
+  s.objects[0].position = {0.0f, 0.0f};  // through the standing character, rail at 1.2 m: its chest
+  s.objects[0].size = {3.0f, 1.2f, 0.1f};
+  World world(s, clearance_test_assets());
+  ClearanceMeter meter(*clearance_test_assets()->set->skeleton);
+  meter.measure(world);
+  const CharacterClearance& c = meter.result()[0];
+  CHECK(c.object.distance < -0.05f);
+  CHECK(c.object.object == 0);
+  CHECK(c.object.part == SolidPart::Rail);
+  CHECK_FALSE(c.penetrating.empty());
+  CHECK(meter.describe(world, 0, c.object).find("inside the rail of the beam") != std::string::npos);
+
+  // Moved 2 m away, nothing penetrates and the gap is positive.
+  s.objects[0].position = {0.0f, 2.0f};
+  World apart(s, clearance_test_assets());
+  meter.measure(apart);
+  CHECK(meter.result()[0].object.distance > 0.5f);
+  CHECK(meter.result()[0].penetrating.empty());
+}
+
+TEST_CASE("shipped obstacle courses and the kick: no body deeper than 1 cm in an object, and the foot meets the ball") {
+  for (const char* name : {"obstacles", "close_pair", "kick"}) {
+    CAPTURE(name);
+    const ClearanceRun r = run_clearance(shipped(name));
+    CHECK(r.goal);
+    INFO(r.summary.min_object_what);
+    CHECK(r.summary.object_frames == 0);
+    CHECK(r.summary.min_object >= -clearance_metric::kObjectTolerance);
+    for (const LaunchClearance& l : r.launches) {
+      CHECK(l.min_clearance >= -clearance_metric::kObjectTolerance);
+      if (l.action == TargetAction::Kick) {
+        REQUIRE_FALSE(std::isnan(l.strike_gap));
+        CHECK(std::fabs(l.strike_gap) <= 0.05f);  // within 5 cm of the ball's surface at the strike
+      }
+    }
+  }
+}
+
+TEST_CASE("obstacles of other sizes: the clip is fitted (lower crouch, higher flight) and passes clear") {
+  Scenario s = shipped("obstacles");
+  s.objects[1].size.y = 1.02f;  // the beam 18 cm lower than the duck clip was made for
+  s.objects[2].size.y = 0.53f;  // the hurdle 8 cm taller than the jump's
+  const WorldAssets& a = *clearance_test_assets();
+  const ObstacleFit duck = fit_obstacle(a.sweeps[static_cast<size_t>(TargetAction::Duck)], a.target(TargetAction::Duck),
+                                        ObjectType::Beam, s.objects[1].size);
+  const ObstacleFit jump = fit_obstacle(a.sweeps[static_cast<size_t>(TargetAction::Jump)], a.target(TargetAction::Jump),
+                                        ObjectType::Hurdle, s.objects[2].size);
+  CHECK(duck.possible);
+  CHECK(duck.lift < -0.1f);
+  CHECK(jump.possible);
+  CHECK(jump.lift > 0.05f);
+  CHECK(duck.weight(static_cast<float>(duck.first)) == doctest::Approx(1.0f));
+  CHECK(duck.weight(static_cast<float>(duck.first) - duck.ramp_frames - 1.0f) == doctest::Approx(0.0f));
+  const ClearanceRun r = run_clearance(s);
+  CHECK(r.goal);
+  INFO(r.summary.min_object_what);
+  CHECK(r.summary.object_frames == 0);
+  CHECK(r.launches.size() == 3);
+}
+
+TEST_CASE("a scenario with an obstacle no clip can pass is refused, naming the object") {
+  Scenario s = shipped("obstacles");
+  s.objects[0].size.y = 0.3f;  // a bar 0.3 m high: nobody crawls under that
+  try {
+    World world(s, clearance_test_assets());
+    FAIL("the 0.3 m bar was accepted");
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    CHECK(what.find("obstacles.json") != std::string::npos);
+    CHECK(what.find("objects[0]") != std::string::npos);
+    CHECK(what.find("bar at (0.00, 3.50)") != std::string::npos);
+    CHECK(what.find("0.30 m") != std::string::npos);
+  }
+  s.objects[0].size.y = 0.7f;
+  s.objects[2].size.y = 0.9f;  // a hurdle no jump clears
+  CHECK_THROWS_WITH_AS(World(s, clearance_test_assets()), doctest::Contains("objects[2]: the hurdle"), InputError);
+}
+
+TEST_CASE("characters keep their distance: roots never closer than the personal space") {
+  const ClearanceRun r = run_clearance(shipped("fight"));
+  CHECK(r.goal);
+  CHECK(r.min_root_distance >= kPersonalSpace - 0.01f);
+  // Bodies still touch in the exchange (guards, crossing punches), but no longer walk through each other.
+  CHECK(r.summary.min_character > -0.10f);
+}
