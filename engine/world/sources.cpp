@@ -2,6 +2,7 @@
 // point where its target clip meets it, the approach to that point, and the arrival there (arrival.h).
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <limits>
 
 #include "engine/control/arrival.h"
@@ -26,7 +27,23 @@ constexpr float kArrivalFacing = 75.0f * kPi / 180.0f;  // rad off an obstacle's
 constexpr float kSquareCrossing = 10.0f * kPi / 180.0f;
 constexpr float kSourceKeptAngle = 2.0f * kPi / 3.0f;   // 120 degrees (choose_source)
 constexpr float kSourceKeptWidth = 1.0f;                // m beyond an obstacle's end (choose_source)
-constexpr float kSpanMargin = 0.5f;  // m: a launch point stays this far inside an obstacle's ends (launch_point)
+// m: a launch needs the character this close to the span's part kSpanMargin inside the ends (approach); the
+// launch slides the rest in before the body reaches the obstacle (World::start_target).
+constexpr float kSpanTolerance = 0.6f;
+// m beyond an obstacle's end that the way to the goal may cross its line and the obstacle still be a source
+// (choose_source): a body passing nearer would clip its post, so it is passed through its span instead;
+// farther, it is walked round with room.
+constexpr float kBesideEnd = 0.6f;
+
+// The lateral place (along the obstacle's width, from its middle) where the straight way from `from` to `to`
+// crosses the line of an obstacle at `p` turned `heading`; nullopt when it does not cross it.
+std::optional<float> crossing_lateral(glm::vec2 from, glm::vec2 to, glm::vec2 p, float heading) {
+  const glm::vec2 n = forward_of(heading), along = left_of(heading);
+  const float s0 = glm::dot(from - p, n), s1 = glm::dot(to - p, n);
+  if (s0 * s1 > 0.0f || s0 == s1) return std::nullopt;
+  const glm::vec2 x = from + (s0 / (s0 - s1)) * (to - from);
+  return glm::dot(x - p, along);
+}
 
 }  // namespace
 
@@ -121,7 +138,13 @@ void World::choose_source(int index) {
     if (is_across(o.spec.type)) {
       const glm::vec2 n = forward_of(o.spec.heading), along = left_of(o.spec.heading);
       const float half_width = 0.5f * o.spec.size.x + (kept ? kSourceKeptWidth : 0.0f);
-      if (std::fabs(glm::dot(c.position - p, along)) > half_width) continue;  // passes beside it
+      // Beside it, and the way to the goal passes its end with room: not in the way. A way that would clip
+      // its end makes it a source, passed through its span (the launch point is inside it).
+      if (std::fabs(glm::dot(c.position - p, along)) > half_width) {
+        const std::optional<float> cross =
+            c.goal.empty() ? std::nullopt : crossing_lateral(c.position, c.goal.front(), p, o.spec.heading);
+        if (!cross || std::fabs(*cross) > 0.5f * o.spec.size.x + kBesideEnd) continue;
+      }
       distance = std::fabs(glm::dot(d, n));
     } else {
       distance = glm::length(d);
@@ -158,6 +181,11 @@ World::Approach World::approach(int index) const {
     if (glm::dot(to_object, n) < 0.0f) n = -n;
     const float along = glm::dot(to_object, n);
     a.to_launch = along - t.reach;
+    // Beside the part of the span a launch may start from (launch_point): not there yet, however near.
+    const float half = 0.5f * objects_[static_cast<size_t>(c.source_object)].spec.size.x;
+    const float lateral = std::fabs(glm::dot(c.position - c.source_object_position, left_of(objects_[static_cast<size_t>(c.source_object)].spec.heading)));
+    const float beside = lateral - std::max(half - kSpanMargin, 0.0f) - kSpanTolerance;
+    if (beside > 0.0f) a.to_launch = std::max(a.to_launch, beside);
     a.ahead = along > 0.0f && glm::dot(fwd, n) >= kCos45;
     a.facing = along > 0.0f && glm::dot(fwd, n) >= std::cos(kArrivalFacing);
     a.square = a.ahead && glm::dot(fwd, n) >= std::cos(kSquareCrossing);

@@ -285,14 +285,23 @@ bool World::start_target(int index, TargetAction action, int object, int target_
   if (across_obstacle) {
     const WorldObject& o = objects_[static_cast<size_t>(object)];
     rt.fit = fit_obstacle(assets_->sweeps[static_cast<size_t>(action)], t, o.spec.type, o.spec.size);
-    // Launched short of the point (arrived and prepared, a little before it): the rest of the way is slid in
-    // before the target movement, so the clip meets the obstacle where it was made to.
-    if (at_source && c.to_launch > 0.0f && std::isfinite(c.to_launch)) {
+    if (at_source) {
+      // The clip entered here meets the obstacle where it was made to only if the character stands on the
+      // launch point: launched short of it (arrived and prepared), past it by more than the entry frame
+      // covers, or beside the part of the span a launch starts from, the difference is slid in before the
+      // body reaches the obstacle (a longer or shorter stride, a drift to the side).
+      const glm::vec2 p = floor_xz(o.position);
       glm::vec2 n = forward_of(o.spec.heading);
-      if (glm::dot(floor_xz(o.position) - c.position, n) < 0.0f) n = -n;
-      rt.aim = c.to_launch * n;
+      if (glm::dot(p - c.position, n) < 0.0f) n = -n;
+      const glm::vec2 side = floor_plane::left_of(o.spec.heading);
+      const size_t k = static_cast<size_t>(entry - t.reference_frame);
+      const float clip_distance = t.reach - (k < t.advance.size() ? t.advance[k] : 0.0f);
+      const float lateral = glm::dot(c.position - p, side);
+      const float half = std::max(0.0f, 0.5f * o.spec.size.x - kSpanMargin);
+      rt.aim = (glm::dot(p - c.position, n) - clip_distance) * n + (std::clamp(lateral, -half, half) - lateral) * side;
       const float fps = assets_->set->clips[static_cast<size_t>(t.clip)].clip.fps;
-      rt.aim_seconds = std::max(0.3f, static_cast<float>(assets_->set->clips[static_cast<size_t>(t.clip)].target_frame - entry) / fps);
+      const int reach_frame = rt.fit.last >= rt.fit.first ? rt.fit.first : assets_->set->clips[static_cast<size_t>(t.clip)].target_frame;
+      rt.aim_seconds = std::max(0.3f, static_cast<float>(reach_frame - entry) / fps);
     }
   }
   if (action == TargetAction::Kick && object >= 0 && t.strike_frame > entry) {

@@ -112,6 +112,8 @@ struct TargetMotion {
 };
 
 constexpr float kBallDiameter = 0.22f;
+constexpr float kSpanMargin = 0.8f;  // m: a launch point stays this far inside an obstacle's ends (launch_point): the
+// crawl's hands reach 0.4 m to the side, and a crossing up to 10 degrees off square drifts 0.3 m more
 // m between two characters' roots on the floor, at least: two trunks and the arms swinging beside them.
 constexpr float kPersonalSpace = 0.62f;  // m: a football; the kick's reach is for this size
 
