@@ -37,6 +37,7 @@ struct Options {
   std::string motions, params, cache, plot_dir;
   float seconds = 60.0f;
   bool json = false, markdown = false;
+  bool vary_sizes = false;
   bool random_given = false;  // --random N: N random courses instead of --scenario
   int random = 0;
   std::uint64_t seed = 1;
@@ -304,6 +305,8 @@ void run_random(const Options& o) {
   if (!o.json && trained) std::cerr << "trained a policy for " << assets->set->name << " (cached in " << cache << ")\n";
   options.actions = prep::actions_of(*assets);
   options.reach = prep::reaches_of(*assets);
+  options.vary_sizes = o.vary_sizes;
+  options.heights = prep::heights_of(*assets);
   const std::vector<prep::Scenario> courses = prep::make_courses(options, o.random);
   if (!o.save_courses.empty()) {
     std::filesystem::create_directories(o.save_courses);
@@ -406,6 +409,9 @@ prep::cli::RegisterCommand evaluate_command(
           ->needs(random);
       app.add_option("--threads", o->threads, "Random courses run on this many threads (default: one per core)")
           ->check(CLI::Range(0, 256))
+          ->needs(random);
+      app.add_flag("--vary-sizes", o->vary_sizes,
+                   "Random courses with obstacles of varied width, depth and height (those the motion set can pass)")
           ->needs(random);
       app.add_option("--save-courses", o->save_courses,
                      "Also write each random course to DIR/random-<seed>-<k>.json (a scenario for prep run or prep-demo)")

@@ -232,10 +232,18 @@ bool draw_course(const CourseOptions& o, Random& rng, Scenario& s) {
           obj.type = item == Item::Bar ? ObjectType::Bar : item == Item::Beam ? ObjectType::Beam : ObjectType::Hurdle;
           obj.action = default_action(obj.type);
           obj.size = item == Item::Bar ? sizes.bar : item == Item::Beam ? sizes.beam : sizes.hurdle;
-          obj.size.x = rng.uniform(4.5f, 6.0f);
+          float max_offset = 0.8f;
+          if (o.vary_sizes) {
+            const size_t a = static_cast<size_t>(obj.action);
+            const glm::vec2 range = a < o.heights.size() ? o.heights[a] : glm::vec2(obj.size.y);
+            obj.size = {rng.uniform(2.0f, 6.0f), rng.uniform(range.x, range.y), rng.uniform(0.05f, 0.2f)};
+            max_offset = std::clamp(0.5f * obj.size.x - 0.9f, 0.0f, 0.8f);
+          } else {
+            obj.size.x = rng.uniform(4.5f, 6.0f);
+          }
           obj.heading = wrap_angle(direction + rng.uniform(-30.0f, 30.0f) * kDegrees);
           // The route crosses the obstacle's axis `offset` from its middle.
-          obj.position = at + rng.uniform(-0.8f, 0.8f) * left_of(obj.heading);
+          obj.position = at + rng.uniform(-max_offset, max_offset) * left_of(obj.heading);
           break;
         }
       }
@@ -268,6 +276,30 @@ std::vector<float> reaches_of(const WorldAssets& assets) {
   std::vector<float> reach;
   for (const TargetMotion& t : assets.targets) reach.push_back(t.reach);
   return reach;
+}
+
+std::vector<glm::vec2> heights_of(const WorldAssets& assets) {
+  std::vector<glm::vec2> out(kTargetActionCount, glm::vec2(0.0f));
+  constexpr float kDeepest = 0.2f;
+  const struct {
+    TargetAction action;
+    ObjectType type;
+    float lo, hi;
+  } kinds[] = {{TargetAction::Crawl, ObjectType::Bar, 0.55f, 0.9f},
+               {TargetAction::Duck, ObjectType::Beam, 1.0f, 1.4f},
+               {TargetAction::Jump, ObjectType::Hurdle, 0.3f, 0.55f}};
+  for (const auto& k : kinds) {
+    const TargetMotion& t = assets.target(k.action);
+    if (t.clip < 0) continue;
+    const ObstacleFit fit = fit_obstacle(assets.sweeps[static_cast<size_t>(k.action)], t, k.type, {1.0f, k.lo, kDeepest});
+    if (fit.last < fit.first) continue;  // the clip never comes near its obstacle: nothing to go by
+    // The limits the fit allows (obstacle_fit.h), 1 cm inside them.
+    const float can = k.type == ObjectType::Hurdle ? fit.clip_height - kFitMargin + max_fit(k.action) - 0.01f
+                                                   : fit.clip_height + kFitMargin - max_fit(k.action) + 0.01f;
+    out[static_cast<size_t>(k.action)] = k.type == ObjectType::Hurdle ? glm::vec2(k.lo, std::min(k.hi, can))
+                                                                      : glm::vec2(std::max(k.lo, can), k.hi);
+  }
+  return out;
 }
 
 std::vector<TargetAction> actions_of(const WorldAssets& assets) {

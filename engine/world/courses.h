@@ -23,6 +23,7 @@
 //   beam's underside or a hurdle's top, and its depth); a ball is 0.22 m across. Width: U(4.5, 6) m, the
 //   route crossing it U(-0.8, 0.8) m from its middle: a character that strays up to 1.4 m off the route
 //   still passes within the width, where the world makes an obstacle a source.
+// - With CourseOptions::vary_sizes, other sizes (see there).
 // - Obstacle headings: the route's direction there plus U(-30, 30) degrees. Balls lie U(-0.2, 0.2) m off
 //   the route (the kick is launched along the character's facing, within 45 degrees of the ball).
 // - Waypoints: none (55%), one (30%) or two (15%), each in a different gap of the route (before an object
@@ -57,7 +58,17 @@ struct CourseOptions {
   // m from each target action's launch point to its object (TargetMotion::reach, by TargetAction; reaches_of);
   // empty: 0 for every action.
   std::vector<float> reach;
+  // Obstacles of varied sizes (the shipped sizes otherwise): width U(2, 6) m, the route crossing up to
+  // 0.8 m from the middle but at least 0.9 m inside the ends; rail or board depth U(0.05, 0.2) m; height
+  // U(lo, hi) from `heights` (by TargetAction: crawl, duck, jump; heights_of gives what a set can pass).
+  bool vary_sizes = false;
+  std::vector<glm::vec2> heights;
 };
+
+// The obstacle heights a world's motion set can pass (obstacle_fit.h), within the ranges courses draw from:
+// bars 0.55-0.9 m, beams 1.0-1.4 m, hurdles 0.3-0.55 m, for the deepest rail or board (0.2 m). Indexed by
+// TargetAction; (0, 0) for the others and for an action without a clip.
+std::vector<glm::vec2> heights_of(const WorldAssets& assets);
 
 // The target actions a world's motion set has a clip for (TargetMotion::clip >= 0).
 std::vector<TargetAction> actions_of(const WorldAssets& assets);

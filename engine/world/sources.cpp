@@ -186,6 +186,7 @@ World::Approach World::approach(int index) const {
     const float lateral = std::fabs(glm::dot(c.position - c.source_object_position, left_of(objects_[static_cast<size_t>(c.source_object)].spec.heading)));
     const float beside = lateral - std::max(half - kSpanMargin, 0.0f) - kSpanTolerance;
     if (beside > 0.0f) a.to_launch = std::max(a.to_launch, beside);
+    a.beside = beside > 0.0f;
     a.ahead = along > 0.0f && glm::dot(fwd, n) >= kCos45;
     a.facing = along > 0.0f && glm::dot(fwd, n) >= std::cos(kArrivalFacing);
     a.square = a.ahead && glm::dot(fwd, n) >= std::cos(kSquareCrossing);
@@ -218,12 +219,14 @@ void World::update_arrival(int index) {
   c.source_ahead = false;
   rt.facing = false;
   rt.square = false;
+  rt.beside = false;
   if (c.has_source && !c.in_target) {
     const Approach a = approach(index);
     c.to_launch = a.to_launch;
     c.source_ahead = a.ahead;
     rt.facing = a.facing;
     rt.square = a.square;
+    rt.beside = a.beside;
     const glm::vec2 to_object = c.source_object_position - c.position;
     const float d = glm::length(to_object);
     // How fast the source itself comes toward the character (an opponent walking in), smoothed over about
@@ -252,7 +255,7 @@ void World::update_arrival(int index) {
   const bool stopped = ctl.alpha_level() == ctl.policy().table.alpha_levels - 1;
   // An obstacle is arrived at facing it more loosely than it is launched at: the arrival squares the
   // character up to it (steer_tightly), and the launch waits for that (try_auto_launch: ahead).
-  const bool within = preparation_ && (c.source_ahead || rt.facing) &&
+  const bool within = preparation_ && (c.source_ahead || rt.facing) && !rt.beside &&
                       (c.to_launch <= arrival_->radius(rt.source_closing_speed) ||
                        ((stopped || ctl.arrived()) && c.to_launch <= params_.reward.source_radius));
   if (within && !ctl.arrived()) {

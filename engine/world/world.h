@@ -348,6 +348,7 @@ class World {
     bool ahead = false;
     bool facing = false;  // an obstacle within kArrivalFacing of its crossing: close enough to arrive at
     bool square = false;  // ahead, and an obstacle within kSquareCrossing of its crossing: launched at
+    bool beside = false;  // beside the part of an obstacle's span a launch may start from: to go there first
   };
   Approach approach(int index) const;
   bool next_source_in_range(int index) const;

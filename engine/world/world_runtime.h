@@ -54,6 +54,7 @@ struct World::Runtime {
   float stride_scale = 1.0f;     // the tight turn's stride, following its target (steering.h)
   bool facing = false;           // the source obstacle is faced closely enough to arrive at (Approach)
   bool square = false;           // ... and to launch at (Approach)
+  bool beside = false;           // beside the span's launch part (Approach): no arrival yet
   std::vector<glm::vec3> positions, centroids;
   std::vector<glm::quat> rotations;
 };
