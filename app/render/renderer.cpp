@@ -1,7 +1,6 @@
 #include "app/render/renderer.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstddef>
 #include <glm/gtc/matrix_transform.hpp>
@@ -11,6 +10,7 @@
 
 #include "app/render/palette.h"
 #include "app/render/shader.h"
+#include "engine/world/object_solids.h"
 
 namespace prep::render {
 
@@ -19,36 +19,6 @@ using namespace prep::gl;
 namespace {
 
 constexpr float kPi = 3.14159265358979f;
-
-std::string lowercase(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
-  return s;
-}
-
-bool has(const std::string& s, const char* word) { return s.find(word) != std::string::npos; }
-
-// Capsule radius (m) of the bone that starts at a joint with this (lowercase) name, for an adult body;
-// 0 means "not drawn" (eyes). Order matters: "forearm" before "arm", "upleg" before "leg".
-float bone_radius(const std::string& n) {
-  if (has(n, "eye") || has(n, "jaw")) return 0.0f;
-  if (has(n, "thumb") || has(n, "index") || has(n, "mid") || has(n, "ring") || has(n, "pinky") || has(n, "finger"))
-    return 0.011f;
-  if (has(n, "hand") || has(n, "wrist")) return 0.032f;
-  if (has(n, "forearm") || has(n, "elbow") || has(n, "lowerarm")) return 0.040f;
-  if (has(n, "collar") || has(n, "clavicle")) return 0.045f;
-  if (has(n, "shldr") || has(n, "shoulder") || has(n, "arm")) return 0.048f;
-  if (has(n, "toe")) return 0.030f;
-  if (has(n, "foot") || has(n, "ankle")) return 0.042f;
-  if (has(n, "thigh") || has(n, "upleg") || has(n, "upperleg") || has(n, "buttock")) return 0.068f;
-  if (has(n, "shin") || has(n, "knee") || has(n, "calf") || has(n, "lowerleg") || has(n, "leg")) return 0.052f;
-  if (has(n, "neck")) return 0.050f;
-  if (has(n, "chest") || has(n, "spine") || has(n, "abdomen") || has(n, "torso") || has(n, "back")) return 0.100f;
-  if (has(n, "hip") || has(n, "pelvis") || has(n, "root")) return 0.085f;
-  return 0.045f;
-}
-
-constexpr float kHeadRadius = 0.10f;
-constexpr float kHeadCentreAbove = 0.11f;  // m from the head joint (base of the skull) to the head's centre
 
 // A unit-radius capsule of zero length: rows of vertices from the bottom pole of end A to the top pole of
 // end B; the band between A's equator and B's equator is the cylinder.
@@ -108,29 +78,30 @@ void upload(GLuint buffer, const std::vector<T>& data) {
 
 }  // namespace
 
-void append_character_capsules(const SceneCharacter& character, std::vector<CapsuleInstance>& out) {
-  const Skeleton& skeleton = *character.skeleton;
-  const auto& p = character.joint_positions;
-  const auto& q = character.joint_rotations;
+const BodyVolumes& BodyVolumesCache::get(const std::shared_ptr<const Skeleton>& skeleton) {
+  for (const Entry& e : entries_)
+    if (e.skeleton == skeleton) return e.volumes;
+  entries_.push_back({skeleton, BodyVolumes(*skeleton)});
+  return entries_.back().volumes;
+}
+
+namespace {
+
+// The character's capsules placed at its pose; false (nothing placed) for a pose of another skeleton.
+bool place_capsules(const SceneCharacter& character, const BodyVolumes& volumes, std::vector<PlacedCapsule>& placed) {
+  const size_t joints = static_cast<size_t>(character.skeleton->size());
+  if (character.joint_positions.size() != joints || character.joint_rotations.size() != joints) return false;
+  volumes.place(character.joint_positions, character.joint_rotations, placed);
+  return true;
+}
+
+}  // namespace
+
+void append_character_capsules(const SceneCharacter& character, const BodyVolumes& volumes, std::vector<CapsuleInstance>& out) {
+  std::vector<PlacedCapsule> placed;
+  if (!place_capsules(character, volumes, placed)) return;
   const float glow = character.is_source ? 1.0f : 0.0f;
-  const int head = head_joint(skeleton);
-  auto add = [&](const glm::vec3& a, const glm::vec3& b, float radius) {
-    if (radius > 0.0f) out.push_back({glm::vec4(a, radius), glm::vec4(b, glow), character.colour});
-  };
-  for (int j = 0; j < skeleton.size(); ++j) {
-    const Joint& joint = skeleton.joints[j];
-    if (joint.parent == head) continue;  // eyes, jaw, head-top joints: the head is drawn whole below
-    if (joint.parent >= 0 && joint.parent != head)
-      add(p[joint.parent], p[j], bone_radius(lowercase(skeleton.joints[joint.parent].name)));
-    if (joint.has_end_site && j != head) add(p[j], p[j] + q[j] * joint.end_site, bone_radius(lowercase(joint.name)));
-  }
-  // The head: a slightly elongated sphere whose centre sits above the head joint along the head's up
-  // axis (towards its End Site when it has one).
-  const Joint& head_j = skeleton.joints[head];
-  glm::vec3 up = q[head] * (head_j.has_end_site && glm::length(head_j.end_site) > 1e-4f ? glm::normalize(head_j.end_site)
-                                                                                           : glm::vec3(0, 1, 0));
-  const glm::vec3 centre = p[head] + up * kHeadCentreAbove;
-  add(centre - up * 0.02f, centre + up * 0.02f, kHeadRadius);
+  for (const PlacedCapsule& c : placed) out.push_back({glm::vec4(c.a, c.radius), glm::vec4(c.b, glow), character.colour});
 }
 
 void append_object_primitives(const SceneObject& object, ScenePrimitives& out) {
@@ -139,48 +110,40 @@ void append_object_primitives(const SceneObject& object, ScenePrimitives& out) {
   const float glow = object.is_source ? 1.0f : 0.0f;
   const glm::vec4 main_colour(palette::kObstacle, glow);
   const glm::vec4 frame_colour(palette::kObstacle * 0.72f, glow);  // posts and legs: same hue, darker
-  auto box = [&](const glm::vec3& centre, const glm::vec3& extents, const glm::vec4& colour) {
-    out.boxes.push_back({box_model(o, h, centre, extents), colour});
-  };
-  const float width = std::max(object.size.x, 0.05f);
+  prep::ObjectType type = prep::ObjectType::Ball;
   switch (object.type) {
-    case ObjectType::Ball: {
-      const float r = 0.5f * std::max(object.size.x, 0.02f);
-      const glm::vec3 c = o + glm::vec3(0, r, 0);
-      out.capsules.push_back({glm::vec4(c, r), glm::vec4(c, glow), palette::kBall});
-      break;
+    case ObjectType::Ball: type = prep::ObjectType::Ball; break;
+    case ObjectType::Bar: type = prep::ObjectType::Bar; break;
+    case ObjectType::Beam: type = prep::ObjectType::Beam; break;
+    case ObjectType::Hurdle: type = prep::ObjectType::Hurdle; break;
+    case ObjectType::Box:  // not a scenario object: no solids of the engine's, the box is its size
+      out.boxes.push_back({box_model(o, h, {0, 0.5f * object.size.y, 0}, object.size), main_colour});
+      return;
+  }
+  for (const ObjectSolid& s : object_solids(type, object.size)) {
+    if (s.sphere) {
+      const glm::vec3 c(box_model(o, h, s.centre, glm::vec3(1.0f)) * glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+      out.capsules.push_back({glm::vec4(c, 0.5f * s.extents.x), glm::vec4(c, glow), palette::kBall});
+      continue;
     }
-    case ObjectType::Bar:
-    case ObjectType::Beam: {
-      const float clearance = std::max(object.size.y, 0.0f);
-      const float thickness = object.size.z > 0.0f ? object.size.z : 0.08f;
-      const float post = 0.07f;
-      for (float side : {-1.0f, 1.0f})
-        box({side * 0.5f * (width + post), 0.5f * (clearance + thickness), 0}, {post, clearance + thickness, post}, frame_colour);
-      box({0, clearance + 0.5f * thickness, 0}, {width, thickness, thickness}, main_colour);
-      break;
-    }
-    case ObjectType::Hurdle: {
-      const float top = std::max(object.size.y, 0.05f);
-      const float board = std::min(0.12f, top);
-      const float depth = object.size.z > 0.0f ? object.size.z : 0.03f;
-      box({0, top - 0.5f * board, 0}, {width, board, depth}, main_colour);
-      for (float side : {-1.0f, 1.0f}) {
-        box({side * 0.5f * width, 0.5f * top, 0}, {0.04f, top, 0.04f}, frame_colour);
-        box({side * 0.5f * width, 0.015f, 0}, {0.05f, 0.03f, 0.5f}, frame_colour);
-      }
-      break;
-    }
-    case ObjectType::Box:
-      box({0, 0.5f * object.size.y, 0}, object.size, main_colour);
-      break;
+    const bool rail = s.part == SolidPart::Rail || s.part == SolidPart::Board;  // what is crossed: the bright part
+    out.boxes.push_back({box_model(o, h, s.centre, s.extents), rail ? main_colour : frame_colour});
   }
 }
 
 ScenePrimitives build_primitives(const Scene& scene, const std::vector<bool>& skinned) {
+  BodyVolumesCache volumes;
+  return build_primitives(scene, skinned, volumes);
+}
+
+ScenePrimitives build_primitives(const Scene& scene, const std::vector<bool>& skinned, BodyVolumesCache& volumes) {
   ScenePrimitives prims;
-  for (size_t i = 0; i < scene.characters.size(); ++i)
-    if (i >= skinned.size() || !skinned[i]) append_character_capsules(scene.characters[i], prims.capsules);
+  for (size_t i = 0; i < scene.characters.size(); ++i) {
+    const SceneCharacter& c = scene.characters[i];
+    if (!c.skeleton) continue;
+    const BodyVolumes& v = volumes.get(c.skeleton);
+    if (i >= skinned.size() || !skinned[i]) append_character_capsules(c, v, prims.capsules);
+  }
   for (const SceneObject& o : scene.objects) append_object_primitives(o, prims);
   for (size_t i = 0; i < scene.goal.size(); ++i) {
     const glm::vec3 g(scene.goal[i].x, 0.0f, scene.goal[i].z);
@@ -447,7 +410,7 @@ void Renderer::prepare(const Scene& scene) {
     }
   }
   skinned_draws_.resize(draws);
-  primitives_ = build_primitives(scene, skinned);
+  primitives_ = build_primitives(scene, skinned, volumes_);
   focus_ = scene.focus;
   upload(capsule_instances_, primitives_.capsules);
   upload(box_instances_, primitives_.boxes);

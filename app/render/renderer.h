@@ -2,6 +2,10 @@
 // character, skinned_body.h; shaded capsules per bone for a skeleton without a body), obstacles as boxes,
 // balls as spheres, the goal marker and the highlighted source of influence.
 // It draws a Scene (scene.h) and reads nothing else. Requires a current context with gl::load() done.
+//
+// The capsules are the engine's body volumes (engine/motion/body_volumes.h) and the obstacles' boxes and
+// balls the engine's object solids (engine/world/object_solids.h): what is drawn is what the clearance
+// measure tests, so the renderer keeps no sizes of its own.
 #pragma once
 
 #include <glm/mat4x4.hpp>
@@ -14,6 +18,7 @@
 #include "app/render/gl_api.h"
 #include "app/render/scene.h"
 #include "app/render/skinned_body.h"
+#include "engine/motion/body_volumes.h"
 
 namespace prep::render {
 
@@ -50,7 +55,24 @@ struct ScenePrimitives {
   std::vector<BoxInstance> boxes;
   std::vector<MarkerInstance> markers;
 };
-// Characters whose entry in `skinned` is true are drawn as skinned bodies and get no capsules.
+
+// The body volumes of each skeleton drawn, made on first use: BodyVolumes reads the body map and every
+// joint name, more than a frame should redo per character.
+class BodyVolumesCache {
+ public:
+  const BodyVolumes& get(const std::shared_ptr<const Skeleton>& skeleton);
+
+ private:
+  struct Entry {
+    std::shared_ptr<const Skeleton> skeleton;  // kept alive: its address must not be reused by another skeleton
+    BodyVolumes volumes;
+  };
+  std::vector<Entry> entries_;
+};
+
+// Characters whose entry in `skinned` is true are drawn as skinned bodies and get no capsules. Without a
+// cache the volumes are made for this call.
+ScenePrimitives build_primitives(const Scene& scene, const std::vector<bool>& skinned, BodyVolumesCache& volumes);
 ScenePrimitives build_primitives(const Scene& scene, const std::vector<bool>& skinned = {});
 // Where on the floor shadows can fall: for every caster (each capsule, each box, each character's joints)
 // the rectangle (min x, min z, max x, max z) holding its footprint and its shadow cast along light_dir
@@ -59,10 +81,10 @@ ScenePrimitives build_primitives(const Scene& scene, const std::vector<bool>& sk
 std::vector<glm::vec4> shadow_receiver_rects(const Scene& scene, const ScenePrimitives& prims, const glm::vec3& light_dir,
                                              int max_rects);
 constexpr int kMaxShadowRects = 8;
-// The capsules of one character's body: one per bone (parent joint -> joint, and joint -> End Site), with
-// radii by body part from the joint names; the head as a near-sphere above the head joint.
-void append_character_capsules(const SceneCharacter& character, std::vector<CapsuleInstance>& out);
-// The boxes of an obstacle (posts, bar, board, feet) or the sphere of a ball.
+// The capsules of one character's body, `volumes` (made for its skeleton) placed at its pose, in its colour.
+void append_character_capsules(const SceneCharacter& character, const BodyVolumes& volumes, std::vector<CapsuleInstance>& out);
+// The boxes of an obstacle (posts, bar, board, legs, feet: object_solids) or the sphere of a ball; a Box
+// (a render-only type) is its own size.
 void append_object_primitives(const SceneObject& object, ScenePrimitives& out);
 
 class Renderer {
@@ -119,6 +141,7 @@ class Renderer {
   std::vector<glm::vec4> covered_;
   ScenePrimitives primitives_;
   std::vector<BodyEntry> bodies_;
+  BodyVolumesCache volumes_;
   std::vector<SkinnedDraw> skinned_draws_;
   glm::vec3 focus_{0.0f};
   glm::mat4 light_view_proj_{1.0f};
