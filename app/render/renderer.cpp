@@ -104,6 +104,17 @@ void append_character_capsules(const SceneCharacter& character, const BodyVolume
   for (const PlacedCapsule& c : placed) out.push_back({glm::vec4(c.a, c.radius), glm::vec4(c.b, glow), character.colour});
 }
 
+void append_flagged_capsules(const SceneCharacter& character, const BodyVolumes& volumes, std::vector<CapsuleInstance>& out) {
+  if (character.flagged.empty()) return;
+  std::vector<PlacedCapsule> placed;
+  if (!place_capsules(character, volumes, placed)) return;
+  for (int k : character.flagged) {
+    if (k < 0 || static_cast<size_t>(k) >= placed.size()) continue;  // flagged for another skeleton's volumes
+    const PlacedCapsule& c = placed[static_cast<size_t>(k)];
+    out.push_back({glm::vec4(c.a, c.radius + kFlaggedMargin), glm::vec4(c.b, 0.0f), palette::kClearance});
+  }
+}
+
 void append_object_primitives(const SceneObject& object, ScenePrimitives& out) {
   const glm::vec3 o = object.position;
   const float h = object.heading;
@@ -143,6 +154,7 @@ ScenePrimitives build_primitives(const Scene& scene, const std::vector<bool>& sk
     if (!c.skeleton) continue;
     const BodyVolumes& v = volumes.get(c.skeleton);
     if (i >= skinned.size() || !skinned[i]) append_character_capsules(c, v, prims.capsules);
+    append_flagged_capsules(c, v, prims.flagged);
   }
   for (const SceneObject& o : scene.objects) append_object_primitives(o, prims);
   for (size_t i = 0; i < scene.goal.size(); ++i) {
@@ -271,11 +283,23 @@ Renderer::Renderer(const RenderSettings& settings) : settings_(settings) {
     glGenBuffers(1, &capsule_ibo_);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, capsule_ibo_);
     glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(idx.size() * sizeof(unsigned)), idx.data(), GL_STATIC_DRAW);
-    glGenBuffers(1, &capsule_instances_);
-    glBindBuffer(GL_ARRAY_BUFFER, capsule_instances_);
-    bind_float_attribute(2, 4, sizeof(CapsuleInstance), offsetof(CapsuleInstance, a_radius), true);
-    bind_float_attribute(3, 4, sizeof(CapsuleInstance), offsetof(CapsuleInstance, b_glow), true);
-    bind_float_attribute(4, 3, sizeof(CapsuleInstance), offsetof(CapsuleInstance, colour), true);
+    auto bind_instances = [](GLuint& buffer) {
+      glGenBuffers(1, &buffer);
+      glBindBuffer(GL_ARRAY_BUFFER, buffer);
+      bind_float_attribute(2, 4, sizeof(CapsuleInstance), offsetof(CapsuleInstance, a_radius), true);
+      bind_float_attribute(3, 4, sizeof(CapsuleInstance), offsetof(CapsuleInstance, b_glow), true);
+      bind_float_attribute(4, 3, sizeof(CapsuleInstance), offsetof(CapsuleInstance, colour), true);
+    };
+    bind_instances(capsule_instances_);
+    // The flagged capsules: the same mesh with instances of their own (GL 3.3 cannot start an instanced
+    // draw part-way into a buffer), so they are drawn in a later pass than the bodies' capsules.
+    glGenVertexArrays(1, &flagged_vao_);
+    glBindVertexArray(flagged_vao_);
+    glBindBuffer(GL_ARRAY_BUFFER, capsule_vbo_);
+    bind_float_attribute(0, 3, 4 * sizeof(float), 0, false);
+    bind_float_attribute(1, 1, 4 * sizeof(float), 3 * sizeof(float), false);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, capsule_ibo_);
+    bind_instances(flagged_instances_);
   }
   // Boxes: per-vertex position + normal, per-instance model matrix (4 columns) and colour/glow.
   {
@@ -360,10 +384,10 @@ Renderer::~Renderer() {
                              marker_program_,        capsule_depth_program_, box_depth_program_, skinned_program_,
                              skinned_depth_program_};
   for (GLuint p : programs) glDeleteProgram(p);
-  const GLuint buffers[] = {capsule_vbo_, capsule_ibo_, capsule_instances_, box_vbo_, box_ibo_, box_instances_,
+  const GLuint buffers[] = {capsule_vbo_, capsule_ibo_, capsule_instances_, flagged_instances_, box_vbo_, box_ibo_, box_instances_,
                             ground_vbo_, receiver_vbo_, marker_vbo_, marker_instances_, skin_block_};
   glDeleteBuffers(static_cast<GLsizei>(std::size(buffers)), buffers);
-  const GLuint arrays[] = {capsule_vao_, box_vao_, ground_vao_, receiver_vao_, marker_vao_};
+  const GLuint arrays[] = {capsule_vao_, flagged_vao_, box_vao_, ground_vao_, receiver_vao_, marker_vao_};
   glDeleteVertexArrays(static_cast<GLsizei>(std::size(arrays)), arrays);
   if (shadow_fbo_) glDeleteFramebuffers(1, &shadow_fbo_);
   if (shadow_texture_) glDeleteTextures(1, &shadow_texture_);
@@ -413,6 +437,7 @@ void Renderer::prepare(const Scene& scene) {
   primitives_ = build_primitives(scene, skinned, volumes_);
   focus_ = scene.focus;
   upload(capsule_instances_, primitives_.capsules);
+  upload(flagged_instances_, primitives_.flagged);
   upload(box_instances_, primitives_.boxes);
   upload(marker_instances_, primitives_.markers);
   // The shadow camera: orthographic, looking down the light direction at the focus.
@@ -459,6 +484,16 @@ void Renderer::draw_skinned_bodies(GLuint program, const glm::mat4& view_proj) {
   }
 }
 
+void Renderer::draw_flagged(const glm::mat4& view_proj) {
+  if (primitives_.flagged.empty()) return;
+  glUseProgram(capsule_program_);
+  glUniformMatrix4fv(glGetUniformLocation(capsule_program_, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
+  glBindVertexArray(flagged_vao_);
+  glDrawElementsInstanced(GL_TRIANGLES, capsule_index_count_, GL_UNSIGNED_INT, nullptr,
+                          static_cast<GLsizei>(primitives_.flagged.size()));
+  triangles_ += capsule_index_count_ / 3 * static_cast<int>(primitives_.flagged.size());
+}
+
 void Renderer::shadow_pass() {
   triangles_ = 0;
   if (!shadow_fbo_) return;
@@ -502,7 +537,8 @@ void Renderer::main_pass(const Camera& camera, int x, int y, int width, int heig
   glClearColor(palette::kSky.r, palette::kSky.g, palette::kSky.b, 1.0f);
   glClearDepth(1.0);
   glDepthMask(GL_TRUE);
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  const bool flagged = !primitives_.flagged.empty();
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | (flagged ? GL_STENCIL_BUFFER_BIT : 0));
   if (!covered_.empty()) {
     // Depth 0 under the panels: every fragment there fails the depth test before it is shaded.
     glClearDepth(0.0);
@@ -528,8 +564,22 @@ void Renderer::main_pass(const Camera& camera, int x, int y, int width, int heig
   glFrontFace(GL_CCW);
   set_lighting_uniforms(capsule_program_, eye);
   draw_capsule_bodies(capsule_program_, view_proj);
+  // The flagged capsules before the skinned bodies, marking the stencil where they show, and no skin is
+  // drawn there: the skin wraps the bones more loosely than the capsules (a flagged capsule a few
+  // millimetres thicker would still be inside it), yet the capsule is what went in. Obstacles and the
+  // floor still hide them by depth, so what shows is the part that sticks out of what it is in. Without a
+  // stencil buffer (an FBO of depth alone) they are only depth-tested, hidden where the skin is.
+  if (flagged) {
+    glEnable(GL_STENCIL_TEST);
+    glStencilFunc(GL_ALWAYS, 1, 0xFF);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+    draw_flagged(view_proj);  // the capsule program's lighting is set above
+    glStencilFunc(GL_NOTEQUAL, 1, 0xFF);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+  }
   set_lighting_uniforms(skinned_program_, eye);
   draw_skinned_bodies(skinned_program_, view_proj);
+  glDisable(GL_STENCIL_TEST);
   set_lighting_uniforms(box_program_, eye);
   draw_boxes(box_program_, view_proj);
 

@@ -24,6 +24,9 @@ struct SceneCharacter {
   std::vector<glm::quat> joint_rotations;  // world, one per joint
   glm::vec3 colour{0.0f};                  // palette::kCharacter for the player, kOtherCharacter for others
   bool is_source = false;                  // the source of influence (fight: the closest opponent)
+  // The clearance view: capsules of this character's body (indices into BodyVolumes(*skeleton).capsules(),
+  // engine/motion/body_volumes.h) drawn in palette::kClearance over the body; empty: none.
+  std::vector<int> flagged;
 };
 
 // Runs forward kinematics for `pose` on `skeleton`.
