@@ -10,6 +10,7 @@
 #pragma once
 
 #include <glm/mat4x4.hpp>
+#include <deque>
 #include <glm/vec4.hpp>
 #include <memory>
 #include <string>
@@ -64,6 +65,7 @@ struct ScenePrimitives {
 // joint name, more than a frame should redo per character.
 class BodyVolumesCache {
  public:
+  // Stays valid as long as the cache (a later skeleton's entry does not move this one).
   const BodyVolumes& get(const std::shared_ptr<const Skeleton>& skeleton);
 
  private:
@@ -71,7 +73,7 @@ class BodyVolumesCache {
     std::shared_ptr<const Skeleton> skeleton;  // kept alive: its address must not be reused by another skeleton
     BodyVolumes volumes;
   };
-  std::vector<Entry> entries_;
+  std::deque<Entry> entries_;  // a deque: appending moves no entry
 };
 
 // Characters whose entry in `skinned` is true are drawn as skinned bodies and get no capsules (their

@@ -57,6 +57,7 @@ TEST_CASE("palette colours classify as themselves") {
     CHECK(cls(palette::kGoal, light) == PixelClass::Goal);
     CHECK(cls(palette::kSource, light) == PixelClass::Source);
     CHECK(cls(palette::kGround, light) == PixelClass::Ground);
+    CHECK(cls(palette::kClearance, light) == PixelClass::Clearance);
   }
   CHECK(cls(palette::kSky, 1.0f) == PixelClass::Sky);
 }
