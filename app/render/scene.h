@@ -69,8 +69,9 @@ struct Scene {
   glm::vec3 focus{0.0f, 0.9f, 0.0f};      // what the shadow map is centred on (usually the player's root)
 };
 
-// The head joint (named "head", case-insensitive), else the highest joint of the rest pose. The head
-// capsule starts at this joint, so its projection always lands on the head's pixels.
+// The head joint (named "head", case-insensitive), else the highest joint of the rest pose: where the
+// clip viewer looks for the head, and the tests' point on the head's pixels (the head capsule, from
+// BodyVolumes, sits just above it).
 int head_joint(const Skeleton& skeleton);
 
 }  // namespace prep::render
