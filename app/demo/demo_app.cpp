@@ -113,6 +113,23 @@ glm::vec2 DemoApp::look_point() const {
   return u.position + kLookAhead * forward_of(u.heading);
 }
 
+void DemoApp::measure_clearance() {
+  const World* w = session_.world();
+  clearance_on_ = view.show_clearance && w;
+  if (!clearance_on_) return;
+  const std::shared_ptr<const Skeleton>& skeleton = w->assets().set->skeleton;
+  if (!clearance_ || skeleton != clearance_skeleton_) {  // another motion set since: other volumes
+    clearance_ = std::make_unique<ClearanceMeter>(*skeleton);
+    clearance_skeleton_ = skeleton;
+  }
+  clearance_->measure(*w);
+  // The world's last tick decides what is flagged; the scene's poses (between the last two ticks) say where
+  // it is drawn, so that the red sits on the body as drawn (the renderer places the same volumes). The
+  // scene lists the world's characters in their order.
+  const std::vector<CharacterClearance>& result = clearance_->result();
+  for (size_t i = 0; i < scene_.characters.size() && i < result.size(); ++i) scene_.characters[i].flagged = result[i].penetrating;
+}
+
 void DemoApp::skip_frame(float dt) {
   session_.steer(steer_direction());
   session_.advance(dt);
@@ -168,6 +185,7 @@ void DemoApp::frame(float dt) {
 
   t = Clock::now();
   scene_ = session_.scene(view.show_balance);
+  measure_clearance();
   update_camera(dt);
   renderer_->prepare(scene_);
   finish_stage(kScene, t, true);
@@ -299,6 +317,7 @@ void DemoApp::draw_panels() {
   ui::plots_panel(*this);
   ui::timings_panel(*this);
   ui::camera_panel(*this);
+  if (view.show_clearance) ui::clearance_panel(*this);
 }
 
 void DemoApp::open_scenario(const std::string& path) {
@@ -380,6 +399,7 @@ void DemoApp::on_key(int key) {
       initial_goal_ = session_.goal();
       break;
     case GLFW_KEY_B: view.show_balance = !view.show_balance; break;
+    case GLFW_KEY_O: view.show_clearance = !view.show_clearance; break;
     case GLFW_KEY_H: view.show_panels = !view.show_panels; break;
     case GLFW_KEY_Q: view.camera.orbit(-step, 0.0f); break;
     case GLFW_KEY_E: view.camera.orbit(step, 0.0f); break;

@@ -10,8 +10,8 @@
 // followed camera slides along without turning, so a held key walks a straight line, and after an orbit
 // W is again "into the screen". 1-6 launch kick, crawl, duck, jump, punch_left, punch_right; Space
 // launches the prepared action; T toggles auto; P pauses; . steps one tick while paused; N restarts; B
-// toggles the support polygon and COM; H hides the panels; Q/E orbit, R/F tilt, Z/X zoom, C follow;
-// Escape quits.
+// toggles the support polygon and COM; O the clearance view; H hides the panels; Q/E orbit, R/F tilt,
+// Z/X zoom, C follow; Escape quits.
 #pragma once
 
 #include <map>
@@ -31,6 +31,7 @@
 #include "app/render/imgui_layer.h"
 #include "app/render/overlay.h"
 #include "app/render/renderer.h"
+#include "engine/world/clearance.h"
 
 namespace prep::demo {
 
@@ -40,6 +41,9 @@ struct DemoView {
   bool follow = true;         // the camera follows the user's character (looking a little ahead of it)
   bool show_panels = true;
   bool show_balance = true;   // the support polygon and COM on the floor
+  // The clearance view: every frame the world's bodies are measured against the objects and each other
+  // (ClearanceMeter), and each capsule deeper than the tolerance is drawn in red over its body.
+  bool show_clearance = false;
   std::string caption;        // drawn at the top-left when not empty (strip tiles), caption_scale times the panel text
   float caption_scale = 1.0f;
 };
@@ -85,6 +89,9 @@ class DemoApp final : public WindowApp {
   std::string message;                   // the last save/load/open outcome, shown in the panels
 
   const render::Scene& scene() const { return scene_; }
+  // This frame's clearance of the world's characters, while the clearance view is on and the world runs;
+  // nullptr otherwise.
+  const ClearanceMeter* clearance() const { return clearance_on_ ? clearance_.get() : nullptr; }
   const render::Renderer& renderer() const { return *renderer_; }
   int triangles() const override;
   const std::string& gl_description() const { return gl_description_; }
@@ -99,6 +106,8 @@ class DemoApp final : public WindowApp {
 
  private:
   void update_camera(float dt);
+  // The clearance view: measures the world and marks the scene's flagged capsules.
+  void measure_clearance();
   void draw_panels();
   glm::vec2 camera_forward() const;  // unit, on the floor
   // The direction the held steering keys ask for, on the floor (relative to the camera; zero: none).
@@ -121,6 +130,9 @@ class DemoApp final : public WindowApp {
   std::unique_ptr<render::Overlay> overlay_;
   std::unique_ptr<render::ImGuiLayer> ui_;
   render::Scene scene_;
+  std::unique_ptr<ClearanceMeter> clearance_;  // made for the skeleton of the world it measures
+  std::shared_ptr<const Skeleton> clearance_skeleton_;
+  bool clearance_on_ = false;                  // clearance_ holds this frame's measure
   std::map<std::string, glm::vec4> panel_rects_;
   glm::mat4 last_view_projection_{1.0f};
   std::string gl_description_;

@@ -81,13 +81,15 @@ int main(int argc, char** argv) {
   CLI::App cli{"prep-demo: characters that prepare for what comes next (Shum et al. 2013).\n"
                "Opens a window on a scenario (default: the obstacle course); --headless renders through OSMesa.\n"
                "In the window: WASD/arrows held steer the character, 1-6 or Space or a right-click launch target motions,\n"
-               "a left click sets the goal (floor) or the source of influence (an object), T toggles auto."};
+               "a left click sets the goal (floor) or the source of influence (an object), T toggles auto,\n"
+               "O the clearance view (body parts too deep in an object or another body in red)."};
   bool headless = false, viewer = false;
   std::string scenario, motions_arg = "builtin", bvh, clip_name, strip, screenshot, params_file, script, frames_dir, video;
   float unit_scale = 0.01f, time = 0.0f, seconds = 30.0f;
   int frames = 8, width = 0, height = 0, bench_frames = 0, screenshot_after = 60, quit_after = -1;
   int shadow_map = render::RenderSettings{}.shadow_map_size;
   bool no_panels = false, no_props = false, no_vsync = false, json = false, capsules = false, until_goal = false;
+  bool clearance = false;
   cli.add_flag("--headless", headless, "Render off-screen through OSMesa (no display needed)");
   cli.add_option("--scenario", scenario, "Scenario JSON (default: assets/scenarios/obstacles.json)");
   // The last --seconds counts: scripts/demo.sh gives one ahead of the user's arguments.
@@ -108,6 +110,9 @@ int main(int argc, char** argv) {
   cli.add_option("--shadow-map", shadow_map, "Shadow map size in texels (0: no shadows)")->capture_default_str();
   cli.add_flag("--capsules", capsules, "Draw the characters as capsules per bone instead of the skinned body");
   cli.add_flag("--no-panels", no_panels, "Do not draw the ImGui panels");
+  cli.add_flag("--clearance", clearance,
+               "Scenario: start with the clearance view on (body parts deeper than the tolerance in an object or "
+               "another body drawn in red; key O)");
   cli.add_option("--script", script,
                  "Window: scripted keys FRAME:KEY (a press) or FROM-TO:KEY (held), comma-separated (e.g. 20:e,40-100:w)");
   cli.add_option("--screenshot-after", screenshot_after, "Window: frame after which --screenshot is taken (-1: on closing, e.g. Escape)")->capture_default_str();
@@ -133,11 +138,13 @@ int main(int argc, char** argv) {
   w.screenshot = screenshot;
   w.screenshot_after = screenshot_after;
   w.quit_after = quit_after;
+  w.clearance = clearance;
   try {
     w.script = parse_key_script(script);
     viewer = viewer || !bvh.empty() || !clip_name.empty() || motions_arg != "builtin";
     if (viewer) {
       if (!scenario.empty()) throw std::runtime_error("--scenario and the clip viewer (--viewer, --clip, --bvh, --motions) exclude each other");
+      if (clearance) throw std::runtime_error("--clearance measures a scenario's world: the clip viewer has none");
       return clip_viewer(headless, motions_arg, bvh, unit_scale, clip_name, params_file, width, height, w, strip, frames, screenshot, time,
                          no_panels, no_props, bench_frames, render);
     }
@@ -156,6 +163,7 @@ int main(int argc, char** argv) {
       o.params = params_file;
       o.json = json;
       o.panels = !no_panels;
+      o.clearance = clearance;
       o.bench_frames = bench_frames;
       o.render = render;
       run_scenario_headless(o);  // whether the goal was reached is in what it prints

@@ -136,6 +136,7 @@ ScenarioRunResult run_scenario_headless(const ScenarioRunOptions& o) {
     render::OsMesaContext context(o.width, o.height);
     DemoApp app(context, session, nullptr, o.render);
     app.view.show_panels = o.panels;
+    app.view.show_clearance = o.clearance;
     const BenchResult r = bench_app(app, context, o.bench_frames);
     std::cout << "prep-demo: scenario " << session.scenario().name << ", " << bench_report(r, o.width, o.height, o.panels, o.bench_frames)
               << "\n  engine per frame (ms): controller " << app.engine_timings.control.value() << "  motion graph "
@@ -164,6 +165,7 @@ ScenarioRunResult run_scenario_headless(const ScenarioRunOptions& o) {
     context = std::make_unique<render::OsMesaContext>(o.width, o.height);
     app = std::make_unique<DemoApp>(*context, session, nullptr, o.render);
     app->view.show_panels = o.panels;
+    app->view.show_clearance = o.clearance;
     if (!o.frames_dir.empty()) std::filesystem::create_directories(o.frames_dir);
     if (!video.empty()) writer = std::make_unique<VideoWriter>(video, o.width, o.height);
   }

@@ -32,6 +32,7 @@ struct ScenarioRunOptions {
   std::string cache_dir;    // policy cache ("" = default_policy_cache_dir())
   bool json = false;
   bool panels = true;
+  bool clearance = false;   // the clearance view on (DemoView::show_clearance)
   int bench_frames = 0;     // > 0: a benchmark of this many frames (1/60 s each) instead of a run
   render::RenderSettings render;
 };

@@ -175,6 +175,7 @@ void run_demo_window(const std::string& scenario, const std::optional<Params>& p
   WindowState window_state;
   install_input(context, window_state);
   DemoApp app(context, session, context.window());
+  app.view.show_clearance = options.clearance;
   window_state.app = &app;
   std::cout << "prep-demo: " << gl::describe_context() << "\n";
   std::cout << "prep-demo: scenario " << session.scenario().name << " (" << scenario << ")" << std::endl;

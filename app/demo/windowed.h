@@ -32,6 +32,7 @@ struct WindowOptions {
   std::string screenshot;       // written after frame `screenshot_after` (from the back buffer), then quit;
   int screenshot_after = 60;    // -1: when the demo is closed (Escape or the window's close button)
   int quit_after = -1;          // frames; -1 runs until the window closes
+  bool clearance = false;       // the scenario demo starts with its clearance view on
 };
 
 // Run the window until closed. Throw render::NoDisplayError when no window can be opened.

@@ -96,6 +96,8 @@
   X(PFNGLRENDERBUFFERSTORAGEMULTISAMPLEPROC, glRenderbufferStorageMultisample) \
   X(PFNGLSCISSORPROC, glScissor)                                          \
   X(PFNGLSHADERSOURCEPROC, glShaderSource)                                \
+  X(PFNGLSTENCILFUNCPROC, glStencilFunc)                                  \
+  X(PFNGLSTENCILOPPROC, glStencilOp)                                      \
   X(PFNGLTEXIMAGE2DPROC, glTexImage2D)                                    \
   X(PFNGLTEXPARAMETERFVPROC, glTexParameterfv)                            \
   X(PFNGLTEXPARAMETERIPROC, glTexParameteri)                              \

@@ -16,6 +16,7 @@ const char* pixel_class_name(PixelClass c) {
     case PixelClass::Goal: return "goal";
     case PixelClass::Source: return "source";
     case PixelClass::Support: return "support polygon";
+    case PixelClass::Clearance: return "clearance";
     case PixelClass::Dark: return "dark";
     case PixelClass::Unknown: return "unknown";
   }
@@ -59,6 +60,8 @@ PixelClass classify(int r8, int g8, int b8) {
   if (within(hue, 134.0f, 20.0f)) return PixelClass::Goal;
   if (within(hue, 316.0f, 16.0f)) return PixelClass::Source;
   if (within(hue, 186.0f, 12.0f)) return PixelClass::Support;
+  // Red, kept apart from the player's orange (24°) by a few degrees of hue nothing is drawn in.
+  if (within(hue, 358.0f, 8.0f)) return PixelClass::Clearance;
   return PixelClass::Unknown;
 }
 

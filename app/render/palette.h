@@ -13,6 +13,9 @@
 //   source of influence       0.95 0.18 0.72           ~316°    magenta (ring on the floor and rim glow)
 //   support polygon (overlay) 0.10 0.78 0.86           ~186°    cyan, translucent fill, opaque outline
 //   centre of mass (overlay)  white inside the support polygon, red (0.95 0.16 0.12, ~2°) outside
+//   clearance view            0.92 0.06 0.10           ~357°    red: body capsules too deep in something
+//                                                              (shares its class with the COM marker
+//                                                              outside the support: both say "wrong")
 //   ImGui windows             ImGui's dark style: window background (0.06, 0.06, 0.06, 0.94)
 #pragma once
 
@@ -32,8 +35,9 @@ inline const glm::vec3 kSource{0.95f, 0.18f, 0.72f};
 inline const glm::vec3 kSupport{0.10f, 0.78f, 0.86f};
 inline const glm::vec3 kComInside{1.0f, 1.0f, 1.0f};
 inline const glm::vec3 kComOutside{0.95f, 0.16f, 0.12f};
+inline const glm::vec3 kClearance{0.92f, 0.06f, 0.10f};
 
-enum class PixelClass { Sky, Ground, Character, OtherCharacter, Obstacle, Ball, Goal, Source, Support, Dark, Unknown };
+enum class PixelClass { Sky, Ground, Character, OtherCharacter, Obstacle, Ball, Goal, Source, Support, Clearance, Dark, Unknown };
 const char* pixel_class_name(PixelClass c);
 
 // What a rendered pixel (0-255 RGB) most likely shows, from its hue, saturation and brightness.

@@ -1,7 +1,6 @@
 #include "app/render/renderer.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstddef>
 #include <glm/gtc/matrix_transform.hpp>
@@ -11,6 +10,7 @@
 
 #include "app/render/palette.h"
 #include "app/render/shader.h"
+#include "engine/world/object_solids.h"
 
 namespace prep::render {
 
@@ -19,36 +19,6 @@ using namespace prep::gl;
 namespace {
 
 constexpr float kPi = 3.14159265358979f;
-
-std::string lowercase(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
-  return s;
-}
-
-bool has(const std::string& s, const char* word) { return s.find(word) != std::string::npos; }
-
-// Capsule radius (m) of the bone that starts at a joint with this (lowercase) name, for an adult body;
-// 0 means "not drawn" (eyes). Order matters: "forearm" before "arm", "upleg" before "leg".
-float bone_radius(const std::string& n) {
-  if (has(n, "eye") || has(n, "jaw")) return 0.0f;
-  if (has(n, "thumb") || has(n, "index") || has(n, "mid") || has(n, "ring") || has(n, "pinky") || has(n, "finger"))
-    return 0.011f;
-  if (has(n, "hand") || has(n, "wrist")) return 0.032f;
-  if (has(n, "forearm") || has(n, "elbow") || has(n, "lowerarm")) return 0.040f;
-  if (has(n, "collar") || has(n, "clavicle")) return 0.045f;
-  if (has(n, "shldr") || has(n, "shoulder") || has(n, "arm")) return 0.048f;
-  if (has(n, "toe")) return 0.030f;
-  if (has(n, "foot") || has(n, "ankle")) return 0.042f;
-  if (has(n, "thigh") || has(n, "upleg") || has(n, "upperleg") || has(n, "buttock")) return 0.068f;
-  if (has(n, "shin") || has(n, "knee") || has(n, "calf") || has(n, "lowerleg") || has(n, "leg")) return 0.052f;
-  if (has(n, "neck")) return 0.050f;
-  if (has(n, "chest") || has(n, "spine") || has(n, "abdomen") || has(n, "torso") || has(n, "back")) return 0.100f;
-  if (has(n, "hip") || has(n, "pelvis") || has(n, "root")) return 0.085f;
-  return 0.045f;
-}
-
-constexpr float kHeadRadius = 0.10f;
-constexpr float kHeadCentreAbove = 0.11f;  // m from the head joint (base of the skull) to the head's centre
 
 // A unit-radius capsule of zero length: rows of vertices from the bottom pole of end A to the top pole of
 // end B; the band between A's equator and B's equator is the cylinder.
@@ -108,29 +78,41 @@ void upload(GLuint buffer, const std::vector<T>& data) {
 
 }  // namespace
 
-void append_character_capsules(const SceneCharacter& character, std::vector<CapsuleInstance>& out) {
-  const Skeleton& skeleton = *character.skeleton;
-  const auto& p = character.joint_positions;
-  const auto& q = character.joint_rotations;
+const BodyVolumes& BodyVolumesCache::get(const std::shared_ptr<const Skeleton>& skeleton) {
+  for (const Entry& e : entries_)
+    if (e.skeleton == skeleton) return e.volumes;
+  entries_.push_back({skeleton, BodyVolumes(*skeleton)});
+  return entries_.back().volumes;
+}
+
+namespace {
+
+// The character's capsules placed at its pose; false (nothing placed) for a pose of another skeleton.
+bool place_capsules(const SceneCharacter& character, const BodyVolumes& volumes, std::vector<PlacedCapsule>& placed) {
+  const size_t joints = static_cast<size_t>(character.skeleton->size());
+  if (character.joint_positions.size() != joints || character.joint_rotations.size() != joints) return false;
+  volumes.place(character.joint_positions, character.joint_rotations, placed);
+  return true;
+}
+
+}  // namespace
+
+void append_character_capsules(const SceneCharacter& character, const BodyVolumes& volumes, std::vector<CapsuleInstance>& out) {
+  std::vector<PlacedCapsule> placed;
+  if (!place_capsules(character, volumes, placed)) return;
   const float glow = character.is_source ? 1.0f : 0.0f;
-  const int head = head_joint(skeleton);
-  auto add = [&](const glm::vec3& a, const glm::vec3& b, float radius) {
-    if (radius > 0.0f) out.push_back({glm::vec4(a, radius), glm::vec4(b, glow), character.colour});
-  };
-  for (int j = 0; j < skeleton.size(); ++j) {
-    const Joint& joint = skeleton.joints[j];
-    if (joint.parent == head) continue;  // eyes, jaw, head-top joints: the head is drawn whole below
-    if (joint.parent >= 0 && joint.parent != head)
-      add(p[joint.parent], p[j], bone_radius(lowercase(skeleton.joints[joint.parent].name)));
-    if (joint.has_end_site && j != head) add(p[j], p[j] + q[j] * joint.end_site, bone_radius(lowercase(joint.name)));
+  for (const PlacedCapsule& c : placed) out.push_back({glm::vec4(c.a, c.radius), glm::vec4(c.b, glow), character.colour});
+}
+
+void append_flagged_capsules(const SceneCharacter& character, const BodyVolumes& volumes, std::vector<CapsuleInstance>& out) {
+  if (character.flagged.empty()) return;
+  std::vector<PlacedCapsule> placed;
+  if (!place_capsules(character, volumes, placed)) return;
+  for (int k : character.flagged) {
+    if (k < 0 || static_cast<size_t>(k) >= placed.size()) continue;  // flagged for another skeleton's volumes
+    const PlacedCapsule& c = placed[static_cast<size_t>(k)];
+    out.push_back({glm::vec4(c.a, c.radius + kFlaggedMargin), glm::vec4(c.b, 0.0f), palette::kClearance});
   }
-  // The head: a slightly elongated sphere whose centre sits above the head joint along the head's up
-  // axis (towards its End Site when it has one).
-  const Joint& head_j = skeleton.joints[head];
-  glm::vec3 up = q[head] * (head_j.has_end_site && glm::length(head_j.end_site) > 1e-4f ? glm::normalize(head_j.end_site)
-                                                                                           : glm::vec3(0, 1, 0));
-  const glm::vec3 centre = p[head] + up * kHeadCentreAbove;
-  add(centre - up * 0.02f, centre + up * 0.02f, kHeadRadius);
 }
 
 void append_object_primitives(const SceneObject& object, ScenePrimitives& out) {
@@ -139,48 +121,41 @@ void append_object_primitives(const SceneObject& object, ScenePrimitives& out) {
   const float glow = object.is_source ? 1.0f : 0.0f;
   const glm::vec4 main_colour(palette::kObstacle, glow);
   const glm::vec4 frame_colour(palette::kObstacle * 0.72f, glow);  // posts and legs: same hue, darker
-  auto box = [&](const glm::vec3& centre, const glm::vec3& extents, const glm::vec4& colour) {
-    out.boxes.push_back({box_model(o, h, centre, extents), colour});
-  };
-  const float width = std::max(object.size.x, 0.05f);
+  prep::ObjectType type = prep::ObjectType::Ball;
   switch (object.type) {
-    case ObjectType::Ball: {
-      const float r = 0.5f * std::max(object.size.x, 0.02f);
-      const glm::vec3 c = o + glm::vec3(0, r, 0);
-      out.capsules.push_back({glm::vec4(c, r), glm::vec4(c, glow), palette::kBall});
-      break;
+    case ObjectType::Ball: type = prep::ObjectType::Ball; break;
+    case ObjectType::Bar: type = prep::ObjectType::Bar; break;
+    case ObjectType::Beam: type = prep::ObjectType::Beam; break;
+    case ObjectType::Hurdle: type = prep::ObjectType::Hurdle; break;
+    case ObjectType::Box:  // not a scenario object: no solids of the engine's, the box is its size
+      out.boxes.push_back({box_model(o, h, {0, 0.5f * object.size.y, 0}, object.size), main_colour});
+      return;
+  }
+  for (const ObjectSolid& s : object_solids(type, object.size)) {
+    if (s.sphere) {
+      const glm::vec3 c(box_model(o, h, s.centre, glm::vec3(1.0f)) * glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+      out.capsules.push_back({glm::vec4(c, 0.5f * s.extents.x), glm::vec4(c, glow), palette::kBall});
+      continue;
     }
-    case ObjectType::Bar:
-    case ObjectType::Beam: {
-      const float clearance = std::max(object.size.y, 0.0f);
-      const float thickness = object.size.z > 0.0f ? object.size.z : 0.08f;
-      const float post = 0.07f;
-      for (float side : {-1.0f, 1.0f})
-        box({side * 0.5f * (width + post), 0.5f * (clearance + thickness), 0}, {post, clearance + thickness, post}, frame_colour);
-      box({0, clearance + 0.5f * thickness, 0}, {width, thickness, thickness}, main_colour);
-      break;
-    }
-    case ObjectType::Hurdle: {
-      const float top = std::max(object.size.y, 0.05f);
-      const float board = std::min(0.12f, top);
-      const float depth = object.size.z > 0.0f ? object.size.z : 0.03f;
-      box({0, top - 0.5f * board, 0}, {width, board, depth}, main_colour);
-      for (float side : {-1.0f, 1.0f}) {
-        box({side * 0.5f * width, 0.5f * top, 0}, {0.04f, top, 0.04f}, frame_colour);
-        box({side * 0.5f * width, 0.015f, 0}, {0.05f, 0.03f, 0.5f}, frame_colour);
-      }
-      break;
-    }
-    case ObjectType::Box:
-      box({0, 0.5f * object.size.y, 0}, object.size, main_colour);
-      break;
+    const bool rail = s.part == SolidPart::Rail || s.part == SolidPart::Board;  // what is crossed: the bright part
+    out.boxes.push_back({box_model(o, h, s.centre, s.extents), rail ? main_colour : frame_colour});
   }
 }
 
 ScenePrimitives build_primitives(const Scene& scene, const std::vector<bool>& skinned) {
+  BodyVolumesCache volumes;
+  return build_primitives(scene, skinned, volumes);
+}
+
+ScenePrimitives build_primitives(const Scene& scene, const std::vector<bool>& skinned, BodyVolumesCache& volumes) {
   ScenePrimitives prims;
-  for (size_t i = 0; i < scene.characters.size(); ++i)
-    if (i >= skinned.size() || !skinned[i]) append_character_capsules(scene.characters[i], prims.capsules);
+  for (size_t i = 0; i < scene.characters.size(); ++i) {
+    const SceneCharacter& c = scene.characters[i];
+    if (!c.skeleton) continue;
+    const BodyVolumes& v = volumes.get(c.skeleton);
+    if (i >= skinned.size() || !skinned[i]) append_character_capsules(c, v, prims.capsules);
+    append_flagged_capsules(c, v, prims.flagged);
+  }
   for (const SceneObject& o : scene.objects) append_object_primitives(o, prims);
   for (size_t i = 0; i < scene.goal.size(); ++i) {
     const glm::vec3 g(scene.goal[i].x, 0.0f, scene.goal[i].z);
@@ -308,11 +283,23 @@ Renderer::Renderer(const RenderSettings& settings) : settings_(settings) {
     glGenBuffers(1, &capsule_ibo_);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, capsule_ibo_);
     glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(idx.size() * sizeof(unsigned)), idx.data(), GL_STATIC_DRAW);
-    glGenBuffers(1, &capsule_instances_);
-    glBindBuffer(GL_ARRAY_BUFFER, capsule_instances_);
-    bind_float_attribute(2, 4, sizeof(CapsuleInstance), offsetof(CapsuleInstance, a_radius), true);
-    bind_float_attribute(3, 4, sizeof(CapsuleInstance), offsetof(CapsuleInstance, b_glow), true);
-    bind_float_attribute(4, 3, sizeof(CapsuleInstance), offsetof(CapsuleInstance, colour), true);
+    auto bind_instances = [](GLuint& buffer) {
+      glGenBuffers(1, &buffer);
+      glBindBuffer(GL_ARRAY_BUFFER, buffer);
+      bind_float_attribute(2, 4, sizeof(CapsuleInstance), offsetof(CapsuleInstance, a_radius), true);
+      bind_float_attribute(3, 4, sizeof(CapsuleInstance), offsetof(CapsuleInstance, b_glow), true);
+      bind_float_attribute(4, 3, sizeof(CapsuleInstance), offsetof(CapsuleInstance, colour), true);
+    };
+    bind_instances(capsule_instances_);
+    // The flagged capsules: the same mesh with instances of their own (GL 3.3 cannot start an instanced
+    // draw part-way into a buffer), so they are drawn in a later pass than the bodies' capsules.
+    glGenVertexArrays(1, &flagged_vao_);
+    glBindVertexArray(flagged_vao_);
+    glBindBuffer(GL_ARRAY_BUFFER, capsule_vbo_);
+    bind_float_attribute(0, 3, 4 * sizeof(float), 0, false);
+    bind_float_attribute(1, 1, 4 * sizeof(float), 3 * sizeof(float), false);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, capsule_ibo_);
+    bind_instances(flagged_instances_);
   }
   // Boxes: per-vertex position + normal, per-instance model matrix (4 columns) and colour/glow.
   {
@@ -397,10 +384,10 @@ Renderer::~Renderer() {
                              marker_program_,        capsule_depth_program_, box_depth_program_, skinned_program_,
                              skinned_depth_program_};
   for (GLuint p : programs) glDeleteProgram(p);
-  const GLuint buffers[] = {capsule_vbo_, capsule_ibo_, capsule_instances_, box_vbo_, box_ibo_, box_instances_,
+  const GLuint buffers[] = {capsule_vbo_, capsule_ibo_, capsule_instances_, flagged_instances_, box_vbo_, box_ibo_, box_instances_,
                             ground_vbo_, receiver_vbo_, marker_vbo_, marker_instances_, skin_block_};
   glDeleteBuffers(static_cast<GLsizei>(std::size(buffers)), buffers);
-  const GLuint arrays[] = {capsule_vao_, box_vao_, ground_vao_, receiver_vao_, marker_vao_};
+  const GLuint arrays[] = {capsule_vao_, flagged_vao_, box_vao_, ground_vao_, receiver_vao_, marker_vao_};
   glDeleteVertexArrays(static_cast<GLsizei>(std::size(arrays)), arrays);
   if (shadow_fbo_) glDeleteFramebuffers(1, &shadow_fbo_);
   if (shadow_texture_) glDeleteTextures(1, &shadow_texture_);
@@ -447,9 +434,10 @@ void Renderer::prepare(const Scene& scene) {
     }
   }
   skinned_draws_.resize(draws);
-  primitives_ = build_primitives(scene, skinned);
+  primitives_ = build_primitives(scene, skinned, volumes_);
   focus_ = scene.focus;
   upload(capsule_instances_, primitives_.capsules);
+  upload(flagged_instances_, primitives_.flagged);
   upload(box_instances_, primitives_.boxes);
   upload(marker_instances_, primitives_.markers);
   // The shadow camera: orthographic, looking down the light direction at the focus.
@@ -496,6 +484,16 @@ void Renderer::draw_skinned_bodies(GLuint program, const glm::mat4& view_proj) {
   }
 }
 
+void Renderer::draw_flagged(const glm::mat4& view_proj) {
+  if (primitives_.flagged.empty()) return;
+  glUseProgram(capsule_program_);
+  glUniformMatrix4fv(glGetUniformLocation(capsule_program_, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
+  glBindVertexArray(flagged_vao_);
+  glDrawElementsInstanced(GL_TRIANGLES, capsule_index_count_, GL_UNSIGNED_INT, nullptr,
+                          static_cast<GLsizei>(primitives_.flagged.size()));
+  triangles_ += capsule_index_count_ / 3 * static_cast<int>(primitives_.flagged.size());
+}
+
 void Renderer::shadow_pass() {
   triangles_ = 0;
   if (!shadow_fbo_) return;
@@ -539,7 +537,8 @@ void Renderer::main_pass(const Camera& camera, int x, int y, int width, int heig
   glClearColor(palette::kSky.r, palette::kSky.g, palette::kSky.b, 1.0f);
   glClearDepth(1.0);
   glDepthMask(GL_TRUE);
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  const bool flagged = !primitives_.flagged.empty();
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | (flagged ? GL_STENCIL_BUFFER_BIT : 0));
   if (!covered_.empty()) {
     // Depth 0 under the panels: every fragment there fails the depth test before it is shaded.
     glClearDepth(0.0);
@@ -565,8 +564,22 @@ void Renderer::main_pass(const Camera& camera, int x, int y, int width, int heig
   glFrontFace(GL_CCW);
   set_lighting_uniforms(capsule_program_, eye);
   draw_capsule_bodies(capsule_program_, view_proj);
+  // The flagged capsules before the skinned bodies, marking the stencil where they show, and no skin is
+  // drawn there: the skin wraps the bones more loosely than the capsules (a flagged capsule a few
+  // millimetres thicker would still be inside it), yet the capsule is what went in. Obstacles and the
+  // floor still hide them by depth, so what shows is the part that sticks out of what it is in. Without a
+  // stencil buffer (an FBO of depth alone) they are only depth-tested, hidden where the skin is.
+  if (flagged) {
+    glEnable(GL_STENCIL_TEST);
+    glStencilFunc(GL_ALWAYS, 1, 0xFF);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+    draw_flagged(view_proj);  // the capsule program's lighting is set above
+    glStencilFunc(GL_NOTEQUAL, 1, 0xFF);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+  }
   set_lighting_uniforms(skinned_program_, eye);
   draw_skinned_bodies(skinned_program_, view_proj);
+  glDisable(GL_STENCIL_TEST);
   set_lighting_uniforms(box_program_, eye);
   draw_boxes(box_program_, view_proj);
 

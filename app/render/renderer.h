@@ -1,10 +1,16 @@
 // The OpenGL 3.3 core renderer: lit floor with a grid, a shadow map, characters as skinned bodies (the glTF
 // character, skinned_body.h; shaded capsules per bone for a skeleton without a body), obstacles as boxes,
-// balls as spheres, the goal marker and the highlighted source of influence.
+// balls as spheres, the goal marker, the highlighted source of influence, and the clearance view's red
+// capsules over the bodies.
 // It draws a Scene (scene.h) and reads nothing else. Requires a current context with gl::load() done.
+//
+// The capsules are the engine's body volumes (engine/motion/body_volumes.h) and the obstacles' boxes and
+// balls the engine's object solids (engine/world/object_solids.h): what is drawn is what the clearance
+// measure tests, so the renderer keeps no sizes of its own.
 #pragma once
 
 #include <glm/mat4x4.hpp>
+#include <deque>
 #include <glm/vec4.hpp>
 #include <memory>
 #include <string>
@@ -14,6 +20,7 @@
 #include "app/render/gl_api.h"
 #include "app/render/scene.h"
 #include "app/render/skinned_body.h"
+#include "engine/motion/body_volumes.h"
 
 namespace prep::render {
 
@@ -49,8 +56,29 @@ struct ScenePrimitives {
   std::vector<CapsuleInstance> capsules;
   std::vector<BoxInstance> boxes;
   std::vector<MarkerInstance> markers;
+  // The clearance view's capsules (SceneCharacter::flagged): drawn over the skinned bodies, in the main
+  // pass only (a debugging aid casts no shadow, so turning it on changes no other pixel).
+  std::vector<CapsuleInstance> flagged;
 };
-// Characters whose entry in `skinned` is true are drawn as skinned bodies and get no capsules.
+
+// The body volumes of each skeleton drawn, made on first use: BodyVolumes reads the body map and every
+// joint name, more than a frame should redo per character.
+class BodyVolumesCache {
+ public:
+  // Stays valid as long as the cache (a later skeleton's entry does not move this one).
+  const BodyVolumes& get(const std::shared_ptr<const Skeleton>& skeleton);
+
+ private:
+  struct Entry {
+    std::shared_ptr<const Skeleton> skeleton;  // kept alive: its address must not be reused by another skeleton
+    BodyVolumes volumes;
+  };
+  std::deque<Entry> entries_;  // a deque: appending moves no entry
+};
+
+// Characters whose entry in `skinned` is true are drawn as skinned bodies and get no capsules (their
+// flagged capsules are drawn all the same). Without a cache the volumes are made for this call.
+ScenePrimitives build_primitives(const Scene& scene, const std::vector<bool>& skinned, BodyVolumesCache& volumes);
 ScenePrimitives build_primitives(const Scene& scene, const std::vector<bool>& skinned = {});
 // Where on the floor shadows can fall: for every caster (each capsule, each box, each character's joints)
 // the rectangle (min x, min z, max x, max z) holding its footprint and its shadow cast along light_dir
@@ -59,10 +87,14 @@ ScenePrimitives build_primitives(const Scene& scene, const std::vector<bool>& sk
 std::vector<glm::vec4> shadow_receiver_rects(const Scene& scene, const ScenePrimitives& prims, const glm::vec3& light_dir,
                                              int max_rects);
 constexpr int kMaxShadowRects = 8;
-// The capsules of one character's body: one per bone (parent joint -> joint, and joint -> End Site), with
-// radii by body part from the joint names; the head as a near-sphere above the head joint.
-void append_character_capsules(const SceneCharacter& character, std::vector<CapsuleInstance>& out);
-// The boxes of an obstacle (posts, bar, board, feet) or the sphere of a ball.
+// The capsules of one character's body, `volumes` (made for its skeleton) placed at its pose, in its colour.
+void append_character_capsules(const SceneCharacter& character, const BodyVolumes& volumes, std::vector<CapsuleInstance>& out);
+// Its flagged capsules in palette::kClearance, kFlaggedMargin thicker than the body's so that they show
+// over the capsule view of the same body (over a skinned body the stencil shows them: Renderer::main_pass).
+void append_flagged_capsules(const SceneCharacter& character, const BodyVolumes& volumes, std::vector<CapsuleInstance>& out);
+constexpr float kFlaggedMargin = 0.005f;  // m
+// The boxes of an obstacle (posts, bar, board, legs, feet: object_solids) or the sphere of a ball; a Box
+// (a render-only type) is its own size.
 void append_object_primitives(const SceneObject& object, ScenePrimitives& out);
 
 class Renderer {
@@ -103,6 +135,7 @@ class Renderer {
   void draw_capsule_bodies(GLuint program, const glm::mat4& view_proj);
   void draw_boxes(GLuint program, const glm::mat4& view_proj);
   void draw_skinned_bodies(GLuint program, const glm::mat4& view_proj);
+  void draw_flagged(const glm::mat4& view_proj);
 
   struct BodyEntry {
     std::shared_ptr<const Skeleton> skeleton;  // kept alive: the key must not be reused by another skeleton
@@ -119,6 +152,7 @@ class Renderer {
   std::vector<glm::vec4> covered_;
   ScenePrimitives primitives_;
   std::vector<BodyEntry> bodies_;
+  BodyVolumesCache volumes_;
   std::vector<SkinnedDraw> skinned_draws_;
   glm::vec3 focus_{0.0f};
   glm::mat4 light_view_proj_{1.0f};
@@ -128,6 +162,7 @@ class Renderer {
   GLuint capsule_depth_program_ = 0, box_depth_program_ = 0;
   GLuint skinned_program_ = 0, skinned_depth_program_ = 0, skin_block_ = 0;
   GLuint capsule_vao_ = 0, capsule_vbo_ = 0, capsule_ibo_ = 0, capsule_instances_ = 0;
+  GLuint flagged_vao_ = 0, flagged_instances_ = 0;  // the same capsule mesh, the flagged instances
   GLuint box_vao_ = 0, box_vbo_ = 0, box_ibo_ = 0, box_instances_ = 0;
   GLuint ground_vao_ = 0, ground_vbo_ = 0, receiver_vao_ = 0, receiver_vbo_ = 0;
   GLuint ground_unshadowed_program_ = 0;

@@ -24,6 +24,9 @@ struct SceneCharacter {
   std::vector<glm::quat> joint_rotations;  // world, one per joint
   glm::vec3 colour{0.0f};                  // palette::kCharacter for the player, kOtherCharacter for others
   bool is_source = false;                  // the source of influence (fight: the closest opponent)
+  // The clearance view: capsules of this character's body (indices into BodyVolumes(*skeleton).capsules(),
+  // engine/motion/body_volumes.h) drawn in palette::kClearance over the body; empty: none.
+  std::vector<int> flagged;
 };
 
 // Runs forward kinematics for `pose` on `skeleton`.
@@ -66,8 +69,9 @@ struct Scene {
   glm::vec3 focus{0.0f, 0.9f, 0.0f};      // what the shadow map is centred on (usually the player's root)
 };
 
-// The head joint (named "head", case-insensitive), else the highest joint of the rest pose. The head
-// capsule starts at this joint, so its projection always lands on the head's pixels.
+// The head joint (named "head", case-insensitive), else the highest joint of the rest pose: where the
+// clip viewer looks for the head, and the tests' point on the head's pixels (the head capsule, from
+// BodyVolumes, sits just above it).
 int head_joint(const Skeleton& skeleton);
 
 }  // namespace prep::render

@@ -3,7 +3,8 @@
 // what a panel shows is the engine's state, and what it does is what a key or a click would do.
 //
 // Layout at 1280x720 (set on first use; the panels can be moved): Scenario and Preparation in a column on
-// the left, Plots, Timings and Camera on the right, the middle kept clear for the scene.
+// the left, Plots, Timings and Camera on the right, the middle kept clear for the scene but for the
+// clearance view's readout at its bottom while that view is on.
 #pragma once
 
 namespace prep::demo {
@@ -15,7 +16,9 @@ namespace prep::ui {
 void startup_panel(demo::DemoApp& app);      // centred: what is loading or training, with a progress bar
 void scenario_panel(demo::DemoApp& app);     // scenario picker, auto, pause, launches, source and goal
 void preparation_panel(demo::DemoApp& app);  // C_i per joint group and joint, w_b/w_s/w_m, thresholds, save/load
-void plots_panel(demo::DemoApp& app);        // alpha and the COM over the last seconds, the floor overlay toggle
+void plots_panel(demo::DemoApp& app);        // alpha and the COM over the last seconds, the floor overlay and
+                                             // clearance view toggles
+void clearance_panel(demo::DemoApp& app);    // while the clearance view is on: the user's nearest object
 void timings_panel(demo::DemoApp& app);      // engine stages per frame, render stages, frames per second
 void camera_panel(demo::DemoApp& app);       // follow, orbit, zoom, keys
 

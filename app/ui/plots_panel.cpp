@@ -28,6 +28,11 @@ void plots_panel(demo::DemoApp& app) {
   if (ImGui::Begin("Plots", nullptr, kPanelFlags)) {
     ImGui::Checkbox("support polygon and COM on the floor", &app.view.show_balance);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("key: B");
+    // Its readout is a panel of its own (clearance_panel.cpp): this column has no room for it at 720 pixels.
+    ImGui::Checkbox("clearance: body parts too deep in red", &app.view.show_clearance);
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("key: O. Capsules of a body deeper than %.0f cm in an object or %.0f cm in another body",
+                        100.0f * clearance_metric::kObjectTolerance, 100.0f * clearance_metric::kCharacterTolerance);
     const auto& samples = s.samples();
     std::vector<float> alpha, height, offset;
     alpha.reserve(samples.size());

@@ -57,6 +57,7 @@ TEST_CASE("palette colours classify as themselves") {
     CHECK(cls(palette::kGoal, light) == PixelClass::Goal);
     CHECK(cls(palette::kSource, light) == PixelClass::Source);
     CHECK(cls(palette::kGround, light) == PixelClass::Ground);
+    CHECK(cls(palette::kClearance, light) == PixelClass::Clearance);
   }
   CHECK(cls(palette::kSky, 1.0f) == PixelClass::Sky);
 }
@@ -186,7 +187,7 @@ TEST_CASE("scene primitives: one capsule per bone and End Site, the head whole, 
   const Clip clip = test::standing_clip(glm::vec3(0.0f));
   const SceneCharacter c = make_scene_character(clip.skeleton, clip.frames[0], palette::kCharacter);
   std::vector<CapsuleInstance> capsules;
-  append_character_capsules(c, capsules);
+  append_character_capsules(c, BodyVolumes(*clip.skeleton), capsules);
   // Bones: every joint but the root has one; End Sites of the feet and hands add 4; the head's End Site
   // is replaced by the head capsule, so: (joints - 1) + 4 + 1.
   CHECK(capsules.size() == static_cast<size_t>(clip.skeleton->size() - 1 + 4 + 1));
