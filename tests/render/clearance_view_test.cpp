@@ -1,6 +1,6 @@
 // The clearance view in pixels: a body pushed into an obstacle shows red where the capsules that went in
 // are, and nowhere else; with nothing flagged (or the view off) there is no red at all. First the renderer
-// alone on a pose made to overlap a bar, then the demo on a scenario whose bar is lower than the crawl.
+// alone on a pose made to overlap a bar, then the demo on a scenario whose beam runs through the body.
 #include <doctest/doctest.h>
 
 #include <GLFW/glfw3.h>
@@ -150,15 +150,16 @@ TEST_CASE("renderer: a body standing in a bar shows its flagged capsules in red,
 
 namespace {
 
-// A bar lower than the crawl passes under, launched at automatically: the crawling body goes into it.
-std::string low_bar_scenario() {
-  const std::string path = test::tmp_dir() + "/clearance_low_bar.json";
+// A beam whose rail runs through the standing character's chest (a world never walks a body into one, so
+// the test puts it there): the body is in it from the first frame.
+std::string beam_through_body_scenario() {
+  const std::string path = test::tmp_dir() + "/clearance_beam_through_body.json";
   std::filesystem::create_directories(test::tmp_dir());
   std::ofstream(path) << R"({
-  "name": "low bar", "description": "a bar 0.5 m high: lower than the crawl clears",
-  "auto": true, "motions": "builtin",
+  "name": "beam through the body", "description": "a beam 1.3 m high across the standing character",
+  "auto": false, "motions": "builtin",
   "characters": [{"position": [0, 0], "heading": 0, "control": "user"}],
-  "objects": [{"type": "bar", "action": "crawl", "position": [0.0, 3.5], "heading": 0, "size": [5.0, 0.5, 0.1]}],
+  "objects": [{"type": "beam", "action": "duck", "position": [0.0, 0.0], "heading": 0, "size": [5.0, 1.3, 0.1]}],
   "goal": [0.0, 6.0]
 })";
   return path;
@@ -166,12 +167,12 @@ std::string low_bar_scenario() {
 
 }  // namespace
 
-TEST_CASE("demo: the clearance view (key O) draws the user's capsules that are in the bar in red, and its readout") {
+TEST_CASE("demo: the clearance view (key O) draws the user's capsules that are in the beam in red, and its readout") {
   demo::SessionOptions options;
   options.cache_dir = test::tmp_dir() + "/policy-cache";  // shared with the other demo tests
   options.background = false;
   demo::WorldSession session(options);
-  session.open(low_bar_scenario());
+  session.open(beam_through_body_scenario());
   render::OsMesaContext context(1280, 720);
   demo::DemoApp app(context, session, nullptr);
   app.view.show_balance = false;  // its COM marker outside the support polygon is red too
@@ -179,7 +180,7 @@ TEST_CASE("demo: the clearance view (key O) draws the user's capsules that are i
   const World& world = *session.world();
   const int user = world.user();
 
-  // On until the crawl is a few centimetres into the bar (measured by a meter of the test's own).
+  // On until the body is a few centimetres into the beam (measured by a meter of the test's own).
   ClearanceMeter probe(*world.assets().set->skeleton);
   bool deep = false;
   for (int frame = 0; frame < 15 * 30 && !deep; ++frame) {
