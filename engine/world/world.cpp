@@ -396,9 +396,13 @@ void World::steer_tightly(int index) {
   const bool steering = turn.rate == 0.0f && max_rate > 0.0f && c.control == Control::User && !c.goal.empty() &&
                         !c.reached_goal && !rt.controller->arrived() &&
                         !(c.source_in_range && c.source_ahead);  // a source's approach is the policy's
-  if (steering) {
+  // Beside the part of an obstacle's span a launch may start from (near its end, or past it): the character
+  // turns to the launch point and walks along to it (then squares up on arrival), rather than into the end.
+  const bool to_span = turn.rate == 0.0f && max_rate > 0.0f && c.control == Control::User && c.has_source && rt.beside &&
+                       !rt.controller->arrived();
+  if (steering || to_span) {
     const float radius = walking_turn_rate_ > 0.0f ? rt.speed / walking_turn_rate_ : 0.0f;
-    turn = tight_turn(c.position, c.heading, c.goal.front(), radius, max_rate);
+    turn = tight_turn(c.position, c.heading, to_span ? c.source : c.goal.front(), radius, max_rate);
   }
   rt.stride_scale += dt / (dt + kStrideTime) * (turn.stride - rt.stride_scale);
   if (rt.reseed) return;  // the stream was just restarted: it has no step of its own yet
