@@ -82,6 +82,7 @@ struct CourseLaunch {
   float alpha_at_1m = -1;     // -1: not measured
   float min_clearance = 0;    // m: the nearest approach while its target motion played (LaunchClearance)
   float strike_gap = 0;       // m: a kick's foot to the ball's surface at the strike (NaN: not struck)
+  float slide_forward = 0, slide_side = 0;  // m: LaunchRecord's
 };
 
 struct KeptPreparation {

@@ -29,7 +29,8 @@ constexpr float kSourceKeptAngle = 2.0f * kPi / 3.0f;   // 120 degrees (choose_s
 constexpr float kSourceKeptWidth = 1.0f;                // m beyond an obstacle's end (choose_source)
 // m: a launch needs the character this close to the span's part kSpanMargin inside the ends (approach); the
 // launch slides the rest in before the body reaches the obstacle (World::start_target).
-constexpr float kSpanTolerance = 0.6f;
+constexpr float kSpanTolerance = 0.25f;
+constexpr float kOpponentHold = 0.5f;  // m short of its launch point at which an opponent stops (update_arrival)
 // m beyond an obstacle's end that the way to the goal may cross its line and the obstacle still be a source
 // (choose_source): a body passing nearer would clip its post, so it is passed through its span instead;
 // farther, it is walked round with room.
@@ -193,7 +194,9 @@ World::Approach World::approach(int index) const {
   } else if (d > 1e-4f) {
     a.to_launch = d - t.reach;
     a.ahead = glm::dot(to_object, fwd) >= kCos45 * d;
-    a.square = a.ahead;
+    // A ball is kicked along the facing: faced within kSquareCrossing (the arrival turns to it).
+    const bool ball = c.source_object >= 0 && objects_[static_cast<size_t>(c.source_object)].spec.type == ObjectType::Ball;
+    a.square = a.ahead && (!ball || glm::dot(to_object, fwd) >= std::cos(kSquareCrossing) * d);
   }
   return a;
 }
@@ -257,6 +260,9 @@ void World::update_arrival(int index) {
   // character up to it (steer_tightly), and the launch waits for that (try_auto_launch: ahead).
   const bool within = preparation_ && (c.source_ahead || rt.facing) && !rt.beside &&
                       (c.to_launch <= arrival_->radius(rt.source_closing_speed) ||
+                       // An opponent stops at striking distance and waits there for the user to come in
+                       // (world.h): two characters each walking to the other's launch point circle.
+                       (c.control == Control::Opponent && c.to_launch <= kOpponentHold) ||
                        ((stopped || ctl.arrived()) && c.to_launch <= params_.reward.source_radius));
   if (within && !ctl.arrived()) {
     c.level_at_arrival = ctl.alpha_of_level(ctl.alpha_level());

@@ -88,6 +88,24 @@ glm::vec2 interaction_point(const MotionSet& set, const MotionClip& mc, TargetAc
 
 std::optional<Role> role_of(TargetAction a) { return parse_role(role_name_of(a)); }
 
+// m: how far the trunk's and head's capsules reach in front of the root, along its facing, in a pose.
+float trunk_front(const MotionSet& set, const BodyVolumes& volumes, const Pose& pose) {
+  std::vector<glm::vec3> positions;
+  std::vector<glm::quat> rotations;
+  std::vector<PlacedCapsule> placed;
+  forward_kinematics(*set.skeleton, pose, positions, &rotations);
+  volumes.place(positions, rotations, placed);
+  const glm::vec2 origin = floor_xz(pose.root_position), fwd = forward_of(heading_of(pose.rotations[0]));
+  float front = 0.0f;
+  for (size_t k = 0; k < placed.size(); ++k) {
+    const BodyPart part = volumes.capsules()[k].part;
+    if (part != BodyPart::Trunk && part != BodyPart::Head) continue;
+    for (const glm::vec3& end : {placed[k].a, placed[k].b})
+      front = std::max(front, glm::dot(floor_xz(end) - origin, fwd) + placed[k].radius);
+  }
+  return front;
+}
+
 // The strike of a kick or punch (TargetMotion::strike_frame): between T_t and the effector's farthest reach
 // (`peak_frame`), the frame at which it moves forward fastest, where a strike meets its target. For a kick
 // the ball's centre is then placed where the kicking foot's capsules just touch a ball of kBallDiameter
@@ -259,11 +277,28 @@ WorldAssets make_world_assets(std::shared_ptr<const MotionSet> set, const Params
       if (t.action == TargetAction::Kick) {  // the ball is met where the foot touches it, not at the toe's farthest reach
         t.reach = glm::dot(strike.target - origin, forward_of(h));
         t.lateral = glm::dot(strike.target - origin, left_of(h));
+      } else {
+        // A punch meets the front of the target's body, not its root: the reach grows by how far the trunk
+        // stands out in front of the root in the prepared posture (the target is prepared too). Two
+        // characters that far apart keep their guards clear of each other until the strike.
+        t.reach += trunk_front(*set, volumes, t.reference);
       }
     }
     if (t.action == TargetAction::Crawl || t.action == TargetAction::Duck || t.action == TargetAction::Jump)
       a.sweeps[static_cast<size_t>(k)] = sweep_clip(*set, volumes, t.clip, t.reference_frame);
-    for (int f = t.reference_frame; f <= std::max(t.reference_frame, mc.target_frame); ++f)
+    // Late entries reach to T_t, and for an obstacle clip on to where the body nears the obstacle (its fit
+    // fading in): a character already nearer than the launch point enters the clip as far on as it is.
+    int last_entry = std::max(t.reference_frame, mc.target_frame);
+    if (!a.sweeps[static_cast<size_t>(k)].frames.empty()) {
+      const ObjectType type = t.action == TargetAction::Crawl ? ObjectType::Bar
+                              : t.action == TargetAction::Duck ? ObjectType::Beam
+                                                                : ObjectType::Hurdle;
+      const ObstacleFit near = fit_obstacle(a.sweeps[static_cast<size_t>(k)], t, type, {1.0f, 1.0f, kDefaultRail});
+      if (near.last >= near.first)
+        last_entry = std::max(last_entry, near.first - static_cast<int>(std::lround(near.ramp_frames)));
+    }
+    t.last_entry_frame = last_entry;
+    for (int f = t.reference_frame; f <= last_entry; ++f)
       t.advance.push_back(glm::dot(floor_xz(mc.clip.frames[static_cast<size_t>(f)].root_position) - origin, forward_of(h)));
   }
   return a;
@@ -272,7 +307,7 @@ WorldAssets make_world_assets(std::shared_ptr<const MotionSet> set, const Params
 int TargetMotion::entry_frame(float past_launch_point) const {
   for (size_t k = 0; k < advance.size(); ++k)
     if (advance[k] >= past_launch_point) return reference_frame + static_cast<int>(k);
-  return reference_frame + static_cast<int>(advance.size()) - 1;  // T_t at the latest
+  return reference_frame + static_cast<int>(advance.size()) - 1;  // last_entry_frame at the latest
 }
 
 }  // namespace prep

@@ -48,6 +48,7 @@ float fastest_level0_turn(const ActionTable& table) {
 
 constexpr float kMinApproachSpeed = 0.5f;  // m/s: the character's pace assumed when slower (control)
 constexpr float kKeptFadeSeconds = 1.0f;   // s: kept preparation's cross-fade from a target clip into walking
+constexpr float kLateFadeSeconds = 0.4f;   // s: the cross-fade into an obstacle clip entered past T_t
 
 }  // namespace
 
@@ -268,7 +269,10 @@ bool World::start_target(int index, TargetAction action, int object, int target_
   const bool across_obstacle = object >= 0 && is_across(objects_[static_cast<size_t>(object)].spec.type);
   const int entry = at_source && across_obstacle && c.to_launch < 0.0f ? t.entry_frame(-c.to_launch) : t.reference_frame;
   // A late entry follows the previous target clip: the poses differ more, the fade is the kept one's.
-  rt.begin_fade(c.pose, entry == t.reference_frame ? params_.graph.blend_s : kKeptFadeSeconds);
+  // Entered past T_t (into the crouch or the run-up), the fade is shorter: the body must be in the clip's
+  // posture by the time it reaches the obstacle.
+  const int t_t = assets_->set->clips[static_cast<size_t>(t.clip)].target_frame;
+  rt.begin_fade(c.pose, entry == t.reference_frame ? params_.graph.blend_s : entry > t_t ? kLateFadeSeconds : kKeptFadeSeconds);
   rt.stream.start(t.clip, entry, c.position, c.heading);
   const int walk = find_cyclic_clip(*assets_->set, Role::Walk);
   bool queued = walk >= 0 && rt.stream.queue(walk);
@@ -315,6 +319,8 @@ bool World::start_target(int index, TargetAction action, int object, int target_
     rt.aim = centre - met - (0.5f * ball.spec.size.x - 0.5f * kBallDiameter) * fwd;  // a bigger ball is met sooner
     rt.aim_seconds = static_cast<float>(t.strike_frame - entry) / assets_->set->clips[static_cast<size_t>(t.clip)].clip.fps;
   }
+  launches_.back().slide_forward = glm::dot(rt.aim, forward_of(c.heading));
+  launches_.back().slide_side = glm::dot(rt.aim, floor_plane::left_of(c.heading));
   return true;
 }
 
@@ -387,11 +393,21 @@ void World::steer_tightly(int index) {
   const float max_rate = params_.runtime.tight_turn_deg_per_s * kPi / 180.0f;
   TightTurn turn;
   // Squaring up to the obstacle arrived at comes first (steering.h).
-  if (max_rate > 0.0f && c.control == Control::User && c.has_source && c.source_object >= 0 && rt.controller->arrived() &&
-      is_across(objects_[static_cast<size_t>(c.source_object)].spec.type)) {
-    glm::vec2 n = forward_of(objects_[static_cast<size_t>(c.source_object)].spec.heading);
-    if (glm::dot(c.source_object_position - c.position, n) < 0.0f) n = -n;
-    turn.rate = squaring_rate(c.heading, std::atan2(n.x, n.y), max_rate);
+  if (max_rate > 0.0f && c.control == Control::Opponent && c.has_source && rt.controller->arrived()) {
+    // An opponent holding its ground turns to keep facing the user.
+    const glm::vec2 d = c.source_object_position - c.position;
+    if (glm::length(d) > 1e-3f) turn.rate = squaring_rate(c.heading, std::atan2(d.x, d.y), max_rate);
+  }
+  if (max_rate > 0.0f && c.control == Control::User && c.has_source && c.source_object >= 0 && rt.controller->arrived()) {
+    const WorldObject& o = objects_[static_cast<size_t>(c.source_object)];
+    if (is_across(o.spec.type)) {
+      glm::vec2 n = forward_of(o.spec.heading);
+      if (glm::dot(c.source_object_position - c.position, n) < 0.0f) n = -n;
+      turn.rate = squaring_rate(c.heading, std::atan2(n.x, n.y), max_rate);
+    } else if (o.spec.type == ObjectType::Ball) {  // the kick is aimed along the facing: face the ball
+      const glm::vec2 d = c.source_object_position - c.position;
+      if (glm::length(d) > 1e-3f) turn.rate = squaring_rate(c.heading, std::atan2(d.x, d.y), max_rate);
+    }
   }
   const bool steering = turn.rate == 0.0f && max_rate > 0.0f && c.control == Control::User && !c.goal.empty() &&
                         !c.reached_goal && !rt.controller->arrived() &&
@@ -431,7 +447,7 @@ void World::steer_tightly(int index) {
 
 // Characters keep their distance: two whose roots come closer than kPersonalSpace on the floor are set
 // apart along the line between them, each by the share of the closing that is its own (the one walking in
-// yields to the one standing; both half when neither moves toward the other). The whole character moves:
+// yields to the one standing, and is turned aside as much; both half when neither moves toward the other). The whole character moves:
 // its stream, synthesis state, planted feet and balance history, so the next frame carries on from there.
 void World::keep_apart() {
   const size_t n = characters_.size();
@@ -447,8 +463,15 @@ void World::keep_apart() {
       const float vb = std::max(0.0f, -glm::dot(runtime_[j]->velocity, dir));
       const float share_a = va + vb > 1e-4f ? va / (va + vb) : 0.5f;
       const float gap = kPersonalSpace - distance;
-      displace(static_cast<int>(i), -share_a * gap * dir);
-      displace(static_cast<int>(j), (1.0f - share_a) * gap * dir);
+      // The one walking in is also turned aside, toward the side its way already leans to, so that it goes
+      // round the other instead of pressing against it.
+      const glm::vec2 across(-dir.y, dir.x);
+      auto aside = [&](const glm::vec2& velocity) {
+        const float lean = glm::dot(velocity, across);
+        return (lean >= 0.0f ? 1.0f : -1.0f) * across;
+      };
+      displace(static_cast<int>(i), share_a * gap * (-dir + aside(runtime_[i]->velocity)));
+      displace(static_cast<int>(j), (1.0f - share_a) * gap * (dir + aside(runtime_[j]->velocity)));
     }
 }
 

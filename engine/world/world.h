@@ -99,10 +99,12 @@ struct TargetMotion {
   // strike has landed): from here the character may leave the clip for prepared locomotion when another
   // source is near (world.h, "kept preparation"). -1: the clip always plays to its graph edge.
   int release_frame = -1;
-  // m: how far the root has come along the T_p facing at each frame from T_p to T_t (advance[0] = 0 at
-  // T_p). A character that reaches an obstacle already past its launch point (out of the previous target
-  // clip, between two close obstacles) enters the clip at the frame that has come as far (entry_frame).
+  // m: how far the root has come along the T_p facing at each frame from T_p to last_entry_frame (T_t, or
+  // for an obstacle clip the frame its fit begins to fade in; advance[0] = 0 at T_p). A character that
+  // reaches an obstacle already past its launch point (out of the previous target clip, between two close
+  // obstacles, or turned to it late) enters the clip at the frame that has come as far (entry_frame).
   std::vector<float> advance;
+  int last_entry_frame = 0;
   int entry_frame(float past_launch_point) const;
   // Kicks and punches: the frame at which the strike meets its target (the effector's fastest forward
   // movement before its farthest reach; -1: none) and the effector's speed there (m/s). A kick's reach and
@@ -114,8 +116,9 @@ struct TargetMotion {
 constexpr float kBallDiameter = 0.22f;
 constexpr float kSpanMargin = 0.8f;  // m: a launch point stays this far inside an obstacle's ends (launch_point): the
 // crawl's hands reach 0.4 m to the side, and a crossing up to 10 degrees off square drifts 0.3 m more
-// m between two characters' roots on the floor, at least: two trunks and the arms swinging beside them.
-constexpr float kPersonalSpace = 0.62f;  // m: a football; the kick's reach is for this size
+// m between two characters' roots on the floor, at least: two trunks, the arms swinging beside them and
+// the feet of a stride.
+constexpr float kPersonalSpace = 0.75f;  // m: a football; the kick's reach is for this size
 
 // Everything a world needs that does not depend on the scenario: the motion set, its graph, the
 // synthesizer, the target motions and the controller's policy. Shared by worlds (and threads) read-only.
@@ -159,6 +162,9 @@ struct LaunchRecord {
   float level_at_arrival = -1;  // the level the controller had chosen itself when the arrival began
   float alpha_at_1m = -1;       // the smoothed alpha when the launch point first came within 1 m
   float miss = 0;               // m: distance still to go to the launch point (< 0: past it) at the launch
+  // m: how far the launch slid the clip onto its object (World::start_target): along the facing (< 0: held
+  // back) and to the side.
+  float slide_forward = 0, slide_side = 0;
 };
 
 struct OpponentRules {
