@@ -170,6 +170,7 @@ void CourseRecorder::observe(const World& world) {
     l.alpha_at_1m = r.alpha_at_1m;
     l.slide_forward = r.slide_forward;
     l.slide_side = r.slide_side;
+    l.turn = r.turn;
     l.at = r.object >= 0 ? floor_xz(world.objects()[static_cast<size_t>(r.object)].position)
            : r.target_character >= 0 ? world.characters()[static_cast<size_t>(r.target_character)].position
                                      : u.position;
@@ -407,6 +408,7 @@ nlohmann::json course_json(const CourseEvaluation& e) {
     if (l.target_character >= 0) lj["target_character"] = l.target_character;
     lj["min_clearance_m"] = number_or_null(l.min_clearance);
     lj["slide_m"] = {l.slide_forward, l.slide_side};
+    lj["turn_deg"] = l.turn * 57.2957795f;
     if (l.action == TargetAction::Kick) lj["strike_gap_m"] = number_or_null(l.strike_gap);
     j["launches"].push_back(lj);
   }

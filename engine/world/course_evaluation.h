@@ -83,6 +83,7 @@ struct CourseLaunch {
   float min_clearance = 0;    // m: the nearest approach while its target motion played (LaunchClearance)
   float strike_gap = 0;       // m: a kick's foot to the ball's surface at the strike (NaN: not struck)
   float slide_forward = 0, slide_side = 0;  // m: LaunchRecord's
+  float turn = 0;                           // rad: LaunchRecord's
 };
 
 struct KeptPreparation {

@@ -143,9 +143,14 @@ bool draw_course(const CourseOptions& o, Random& rng, Scenario& s) {
     if (has(o.actions, a)) punches.push_back(a);
   std::vector<Item> kinds;
   if (has(o.actions, TargetAction::Kick)) kinds.push_back(Item::Ball);
-  if (has(o.actions, TargetAction::Crawl)) kinds.push_back(Item::Bar);
-  if (has(o.actions, TargetAction::Duck)) kinds.push_back(Item::Beam);
-  if (has(o.actions, TargetAction::Jump)) kinds.push_back(Item::Hurdle);
+  // An obstacle kind whose clip passes none of the heights drawn from (heights_of) is left out.
+  auto passable = [&](TargetAction a) {
+    const size_t k = static_cast<size_t>(a);
+    return has(o.actions, a) && (o.heights.size() <= k || o.heights[k].x <= o.heights[k].y);
+  };
+  if (passable(TargetAction::Crawl)) kinds.push_back(Item::Bar);
+  if (passable(TargetAction::Duck)) kinds.push_back(Item::Beam);
+  if (passable(TargetAction::Jump)) kinds.push_back(Item::Hurdle);
 
   // What the course holds, in order.
   std::vector<Item> items;
@@ -240,6 +245,10 @@ bool draw_course(const CourseOptions& o, Random& rng, Scenario& s) {
             max_offset = std::clamp(0.5f * obj.size.x - 0.9f, 0.0f, 0.8f);
           } else {
             obj.size.x = rng.uniform(4.5f, 6.0f);
+            // The shipped size, brought within what the set's clip can pass.
+            const size_t a = static_cast<size_t>(obj.action);
+            if (a < o.heights.size() && o.heights[a].x <= o.heights[a].y)
+              obj.size.y = std::clamp(obj.size.y, o.heights[a].x, o.heights[a].y);
           }
           obj.heading = wrap_angle(direction + rng.uniform(-30.0f, 30.0f) * kDegrees);
           // The route crosses the obstacle's axis `offset` from its middle.

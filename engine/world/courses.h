@@ -61,13 +61,15 @@ struct CourseOptions {
   // Obstacles of varied sizes (the shipped sizes otherwise): width U(2, 6) m, the route crossing up to
   // 0.8 m from the middle but at least 0.9 m inside the ends; rail or board depth U(0.05, 0.2) m; height
   // U(lo, hi) from `heights` (by TargetAction: crawl, duck, jump; heights_of gives what a set can pass).
+  // The shipped heights are also brought within `heights`, and a kind whose range is empty (lo > hi: its
+  // clip passes none) is left out. Empty: no limits.
   bool vary_sizes = false;
   std::vector<glm::vec2> heights;
 };
 
 // The obstacle heights a world's motion set can pass (obstacle_fit.h), within the ranges courses draw from:
 // bars 0.55-0.9 m, beams 1.0-1.4 m, hurdles 0.3-0.55 m, for the deepest rail or board (0.2 m). Indexed by
-// TargetAction; (0, 0) for the others and for an action without a clip.
+// TargetAction; (0, 0) for the others and for an action without a clip; lo > hi when the clip passes none.
 std::vector<glm::vec2> heights_of(const WorldAssets& assets);
 
 // The target actions a world's motion set has a clip for (TargetMotion::clip >= 0).

@@ -40,6 +40,7 @@ ClipSweep sweep_clip(const MotionSet& set, const BodyVolumes& volumes, int clip,
       segments.push_back({glm::dot(floor_plane::floor_xz(p.a) - origin, fwd), p.a.y,
                           glm::dot(floor_plane::floor_xz(p.b) - origin, fwd), p.b.y, p.radius});
     sweep.frames.push_back(std::move(segments));
+    sweep.root_z.push_back(glm::dot(floor_plane::floor_xz(positions[0]) - origin, fwd));
   }
   return sweep;
 }

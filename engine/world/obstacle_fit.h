@@ -40,6 +40,7 @@ struct ClipSweep {
   int first_frame = 0;                        // T_p
   float fps = 30.0f;
   std::vector<std::vector<Segment>> frames;   // [frame - first_frame][capsule]
+  std::vector<float> root_z;                  // [frame - first_frame]: the root's z
 };
 ClipSweep sweep_clip(const MotionSet& set, const BodyVolumes& volumes, int clip, int reference_frame);
 

@@ -88,6 +88,27 @@ glm::vec2 interaction_point(const MotionSet& set, const MotionClip& mc, TargetAc
 
 std::optional<Role> role_of(TargetAction a) { return parse_role(role_name_of(a)); }
 
+// m along the T_p facing: where an obstacle of the target's kind is best passed by the swept clip, searched
+// in 2 cm steps over the ground the clip covers: the highest board cleared (a jump), the lowest rail passed
+// under (a crawl or duck), for a rail or board 0.1 m deep.
+float best_crossing(const ClipSweep& sweep, TargetMotion t) {
+  const ObjectType type = t.action == TargetAction::Jump ? ObjectType::Hurdle
+                          : t.action == TargetAction::Duck ? ObjectType::Beam
+                                                            : ObjectType::Bar;
+  // Only where the root passes the obstacle's line from one side to the other, with room on both.
+  constexpr float kRoom = 0.2f;
+  const float lo = sweep.root_z.front() + kRoom, hi = sweep.root_z.back() - kRoom;
+  float best_z = t.reach, best = type == ObjectType::Hurdle ? -1e9f : 1e9f;
+  for (float z = lo; z <= hi; z += 0.02f) {
+    t.reach = z;
+    const ObstacleFit f = fit_obstacle(sweep, t, type, {1.0f, 1.0f, 0.1f});
+    if (f.last < f.first) continue;
+    const bool better = type == ObjectType::Hurdle ? f.clip_height > best : f.clip_height < best;
+    if (better) best = f.clip_height, best_z = z;
+  }
+  return best_z;
+}
+
 // m: how far the trunk's and head's capsules reach in front of the root, along its facing, in a pose.
 float trunk_front(const MotionSet& set, const BodyVolumes& volumes, const Pose& pose) {
   std::vector<glm::vec3> positions;
@@ -265,7 +286,15 @@ WorldAssets make_world_assets(std::shared_ptr<const MotionSet> set, const Params
     const glm::vec2 origin = floor_xz(t.reference.root_position);
     const float h = heading_of(t.reference.rotations[0]);
     int peak_frame = -1;
-    const glm::vec2 meets = interaction_point(*set, mc, t.action, t.reference_frame, &peak_frame);
+    glm::vec2 meets = interaction_point(*set, mc, t.action, t.reference_frame, &peak_frame);
+    const bool across = t.action == TargetAction::Crawl || t.action == TargetAction::Duck || t.action == TargetAction::Jump;
+    if (across) {
+      a.sweeps[static_cast<size_t>(k)] = sweep_clip(*set, volumes, t.clip, t.reference_frame);
+      // A recorded obstacle clip was not made for a known obstacle: it meets its obstacle where its body
+      // passes it best (obstacle_fit.h's sweep): the highest board it clears, the lowest rail it passes.
+      const bool designed = set->name == "builtin" && library::obstacle_of(mc.clip.name).height > 0.0f;
+      if (!designed) meets = origin + best_crossing(a.sweeps[static_cast<size_t>(k)], t) * forward_of(h);
+    }
     const glm::vec2 q = meets - origin;
     t.reach = glm::dot(q, forward_of(h));
     t.lateral = glm::dot(q, left_of(h));
@@ -284,8 +313,6 @@ WorldAssets make_world_assets(std::shared_ptr<const MotionSet> set, const Params
         t.reach += trunk_front(*set, volumes, t.reference);
       }
     }
-    if (t.action == TargetAction::Crawl || t.action == TargetAction::Duck || t.action == TargetAction::Jump)
-      a.sweeps[static_cast<size_t>(k)] = sweep_clip(*set, volumes, t.clip, t.reference_frame);
     // Late entries reach to T_t, and for an obstacle clip on to where the body nears the obstacle (its fit
     // fading in): a character already nearer than the launch point enters the clip as far on as it is.
     int last_entry = std::max(t.reference_frame, mc.target_frame);

@@ -48,7 +48,8 @@ float fastest_level0_turn(const ActionTable& table) {
 
 constexpr float kMinApproachSpeed = 0.5f;  // m/s: the character's pace assumed when slower (control)
 constexpr float kKeptFadeSeconds = 1.0f;   // s: kept preparation's cross-fade from a target clip into walking
-constexpr float kLateFadeSeconds = 0.4f;   // s: the cross-fade into an obstacle clip entered past T_t
+constexpr float kLateFadeSeconds = 0.4f;
+constexpr float kStandingSpeed = 0.1f;     // m/s: slower than this the character has stopped (try_auto_launch)   // s: the cross-fade into an obstacle clip entered past T_t
 
 }  // namespace
 
@@ -273,7 +274,20 @@ bool World::start_target(int index, TargetAction action, int object, int target_
   // posture by the time it reaches the obstacle.
   const int t_t = assets_->set->clips[static_cast<size_t>(t.clip)].target_frame;
   rt.begin_fade(c.pose, entry == t.reference_frame ? params_.graph.blend_s : entry > t_t ? kLateFadeSeconds : kKeptFadeSeconds);
-  rt.stream.start(t.clip, entry, c.position, c.heading);
+  // An obstacle is crossed square and a ball kicked straight: the arrival turns the character toward it
+  // (steer_tightly), and the clip starts facing the obstacle's crossing or the ball, the rest of the turn
+  // taken in the launch's cross-fade. Without preparation (the naive baseline) it launches as it comes.
+  float heading = c.heading;
+  if (at_source && object >= 0 && preparation_) {
+    const WorldObject& o = objects_[static_cast<size_t>(object)];
+    glm::vec2 facing = floor_xz(o.position) - c.position;
+    if (across_obstacle) {
+      facing = forward_of(o.spec.heading);
+      if (glm::dot(floor_xz(o.position) - c.position, facing) < 0.0f) facing = -facing;
+    }
+    if (glm::length(facing) > 1e-4f) heading = std::atan2(facing.x, facing.y);
+  }
+  rt.stream.start(t.clip, entry, c.position, heading);
   const int walk = find_cyclic_clip(*assets_->set, Role::Walk);
   bool queued = walk >= 0 && rt.stream.queue(walk);
   for (size_t k = 0; !queued && k < assets_->core_nodes.size(); ++k) queued = rt.stream.queue(assets_->core_nodes[k]);
@@ -313,14 +327,15 @@ bool World::start_target(int index, TargetAction action, int object, int target_
     // it lies (the launch is rarely exactly on the point, and the ball may be off the facing). The
     // difference is slid in over the wind-up, so the foot meets the ball's surface at the strike frame.
     const WorldObject& ball = objects_[static_cast<size_t>(object)];
-    const glm::vec2 fwd = forward_of(c.heading), left = floor_plane::left_of(c.heading);
+    const glm::vec2 fwd = forward_of(heading), left = floor_plane::left_of(heading);
     const glm::vec2 met = c.position + t.reach * fwd + t.lateral * left;
     const glm::vec2 centre = floor_xz(ball.position);
     rt.aim = centre - met - (0.5f * ball.spec.size.x - 0.5f * kBallDiameter) * fwd;  // a bigger ball is met sooner
     rt.aim_seconds = static_cast<float>(t.strike_frame - entry) / assets_->set->clips[static_cast<size_t>(t.clip)].clip.fps;
   }
-  launches_.back().slide_forward = glm::dot(rt.aim, forward_of(c.heading));
-  launches_.back().slide_side = glm::dot(rt.aim, floor_plane::left_of(c.heading));
+  launches_.back().slide_forward = glm::dot(rt.aim, forward_of(heading));
+  launches_.back().slide_side = glm::dot(rt.aim, floor_plane::left_of(heading));
+  launches_.back().turn = std::remainder(heading - c.heading, 2.0f * kPi);
   return true;
 }
 
@@ -344,9 +359,10 @@ void World::try_auto_launch(int index) {
   const bool on_point = c.to_launch <= 0.0f;
   const bool ready = c.arrived && c.alpha >= params_.runtime.launch_alpha;
   if (!on_point && !ready) return;
-  // An obstacle is crossed square: the arrival turns the character to it first (steer_tightly). Without
-  // preparation (the naive baseline) nothing squares it up; it launches as it comes.
-  if (preparation_ && params_.runtime.tight_turn_deg_per_s > 0.0f && !runtime_[static_cast<size_t>(index)]->square) return;
+  // Square to the obstacle or the ball first while the arrival turns the character (steer_tightly); one
+  // that stands still not square launches anyway, the rest of the turn taken in the launch (start_target).
+  Runtime& rt = *runtime_[static_cast<size_t>(index)];
+  if (preparation_ && !rt.square && rt.speed > kStandingSpeed) return;
   if (start_target(index, c.prepared_for, c.source_object, c.source_character, true) && c.control == Control::Opponent)
     c.last_attack = time_;
 }
@@ -430,11 +446,19 @@ void World::steer_tightly(int index) {
   if (turn.rate != 0.0f) {
     const FrameContacts contacts = rt.stream.contacts();
     const bool left = contacts[kLeft].any(), right = contacts[kRight].any();
-    if (left != right) {  // single support: pivot on the stance foot
+    // Single support: pivot on the stance foot. Otherwise, arrived (standing, squaring
+    // up): turn on the spot about the root, at a third of the rate, a shuffle of the feet; otherwise a
+    // character standing a little off square would never turn and never launch.
+    if (left != right || rt.controller->arrived()) {
       const MotionSet& set = *assets_->set;
-      forward_kinematics(*set.skeleton, rt.stream.pose(), rt.positions);
-      const glm::vec3 ankle = rt.positions[static_cast<size_t>(set.body.legs[left ? kLeft : kRight].ankle)];
-      const glm::vec2 pivot = floor_xz(ankle) + move.offset;
+      glm::vec2 pivot = floor_xz(root) + move.offset;
+      if (left != right) {
+        forward_kinematics(*set.skeleton, rt.stream.pose(), rt.positions);
+        const glm::vec3 ankle = rt.positions[static_cast<size_t>(set.body.legs[left ? kLeft : kRight].ankle)];
+        pivot = floor_xz(ankle) + move.offset;
+      } else {
+        turn.rate /= 3.0f;
+      }
       FloorTransform pivoting;
       pivoting.angle = turn.rate * dt;
       const glm::vec3 turned = pivoting.apply(glm::vec3(pivot.x, 0.0f, pivot.y));

@@ -165,6 +165,7 @@ struct LaunchRecord {
   // m: how far the launch slid the clip onto its object (World::start_target): along the facing (< 0: held
   // back) and to the side.
   float slide_forward = 0, slide_side = 0;
+  float turn = 0;  // rad: the turn taken in the launch's cross-fade to face the obstacle's crossing or the ball
 };
 
 struct OpponentRules {
