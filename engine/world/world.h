@@ -10,7 +10,7 @@
 // Where each part lives: world.cpp the tick (control, launches, kept preparation, steering, goals);
 // sources.cpp the sources of influence, launch points, the approach and the arrival; target_motions.cpp the
 // assets (T_p, reach, release and advance of each target clip); summary.cpp the run summaries; steering.h
-// the tight turns and squaring up.
+// the tight turns and squaring up; bodies.cpp the obstacle fit of a pose and characters kept apart.
 //
 // Choices where the paper leaves it open (each also stated where it is coded):
 // - The source point the controller sees is the launch point of the object: where the character must
@@ -46,6 +46,12 @@
 //   filter's 3 sigma, and rises back to the policy's level when a source comes into range.
 // - Tight turns and waypoints (steering.h): a goal inside the walking turns' circle is turned toward about
 //   the stance foot; a waypoint other than the last counts as passed when the character goes by it.
+// - Bodies kept clear (clearance.h measures it): an obstacle is launched at facing its crossing (the arrival
+//   turns the character; one standing still off square launches, the rest of the turn in the cross-fade),
+//   and the clip is slid onto the obstacle (short of, past or beside its launch point) before the body
+//   reaches it, then fitted to its height (obstacle_fit.h); a kick's wind-up is slid onto the ball; an
+//   obstacle the way to the goal crosses near its end is a source, walked along to; opponents hold at
+//   striking distance; roots stay kPersonalSpace apart (bodies.cpp).
 // - No source: the controller is shown one 100 m behind the character, a source it walks away from and
 //   never reaches (beyond the last distance bin, behind), the state in which training learned that
 //   nothing calls for preparation. (One 100 m ahead would share its state with every source beyond the

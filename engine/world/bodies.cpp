@@ -1,0 +1,94 @@
+// Bodies kept clear of what they meet (clearance.h measures it): an obstacle clip's pose fitted to its
+// obstacle (obstacle_fit.h), and characters kept apart.
+#include <algorithm>
+#include <cmath>
+
+#include "engine/motion/kinematics.h"
+#include "engine/synthesis/foot_ik.h"
+#include "engine/world/floor.h"
+#include "engine/world/world.h"
+#include "engine/world/world_runtime.h"
+
+namespace prep {
+
+using floor_plane::forward_of;
+
+// Characters keep their distance: two whose roots come closer than kPersonalSpace on the floor are set
+// apart along the line between them, each by the share of the closing that is its own (the one walking in
+// yields to the one standing, and is turned aside as much; both half when neither moves toward the other). The whole character moves:
+// its stream, synthesis state, planted feet and balance history, so the next frame carries on from there.
+void World::keep_apart() {
+  const size_t n = characters_.size();
+  for (size_t i = 0; i < n; ++i)
+    for (size_t j = i + 1; j < n; ++j) {
+      WorldCharacter& a = characters_[i];
+      WorldCharacter& b = characters_[j];
+      const glm::vec2 d = b.position - a.position;
+      const float distance = glm::length(d);
+      if (distance >= kPersonalSpace) continue;
+      const glm::vec2 dir = distance > 1e-4f ? d / distance : forward_of(a.heading);
+      const float va = std::max(0.0f, glm::dot(runtime_[i]->velocity, dir));
+      const float vb = std::max(0.0f, -glm::dot(runtime_[j]->velocity, dir));
+      const float share_a = va + vb > 1e-4f ? va / (va + vb) : 0.5f;
+      const float gap = kPersonalSpace - distance;
+      // The one walking in is also turned aside, toward the side its way already leans to, so that it goes
+      // round the other instead of pressing against it.
+      const glm::vec2 across(-dir.y, dir.x);
+      auto aside = [&](const glm::vec2& velocity) {
+        const float lean = glm::dot(velocity, across);
+        return (lean >= 0.0f ? 1.0f : -1.0f) * across;
+      };
+      displace(static_cast<int>(i), share_a * gap * (-dir + aside(runtime_[i]->velocity)));
+      displace(static_cast<int>(j), (1.0f - share_a) * gap * (dir + aside(runtime_[j]->velocity)));
+    }
+}
+
+void World::displace(int index, glm::vec2 offset) {
+  if (offset == glm::vec2(0.0f)) return;
+  WorldCharacter& c = characters_[static_cast<size_t>(index)];
+  Runtime& rt = *runtime_[static_cast<size_t>(index)];
+  const glm::vec3 o3(offset.x, 0.0f, offset.y);
+  FloorTransform shift;
+  shift.offset = offset;
+  rt.stream.move(shift);
+  rt.synthesis_previous_root += o3;
+  SynthesisState& s = rt.synthesis;
+  s.previous_locomotion_root += o3;
+  s.root_xz += offset;
+  for (FootPlant& f : s.feet) {
+    f.heel_anchor += o3;
+    f.toe_anchor += o3;
+  }
+  for (size_t side = 0; side < 2; ++side) {
+    s.previous_locomotion_feet.heel[side] += o3;
+    s.previous_locomotion_feet.toe[side] += o3;
+  }
+  for (glm::vec3& p : s.previous) p += o3;
+  for (glm::vec3& p : s.before_previous) p += o3;
+  c.pose.root_position += o3;
+  c.position += offset;
+  c.com += o3;
+}
+
+// The obstacle clip's fit (obstacle_fit.h) on this frame: the body raised or lowered by the lift's share,
+// the feet kept where the clip has them (lowered: both, so a swing foot does not sink into the floor;
+// raised: the feet on the floor, the others rise with the body in flight).
+void World::fit_pose(int index, Pose& pose) {
+  Runtime& rt = *runtime_[static_cast<size_t>(index)];
+  const float lift = rt.fit.lift * rt.fit.weight(static_cast<float>(rt.stream.clip_frame()));
+  if (lift == 0.0f) return;
+  const MotionSet& set = *assets_->set;
+  forward_kinematics(*set.skeleton, pose, rt.positions, &rt.rotations);
+  const FrameContacts contacts = rt.stream.contacts();
+  pose.root_position.y += lift;
+  const glm::vec3 forward = pose.rotations[0] * glm::vec3(0.0f, 0.0f, 1.0f);
+  for (int side : {kLeft, kRight}) {
+    if (lift > 0.0f && !contacts[static_cast<size_t>(side)].any()) continue;
+    const LegChain& leg = set.body.legs[static_cast<size_t>(side)];
+    const size_t ankle = static_cast<size_t>(leg.ankle);
+    solve_leg(*set.skeleton, leg, params_.ik, pose, rt.positions, rt.rotations, rt.positions[ankle], rt.rotations[ankle],
+              forward, glm::vec3(0.0f, lift, 0.0f));
+  }
+}
+
+}  // namespace prep
