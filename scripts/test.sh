@@ -18,6 +18,6 @@ echo "prep: tests again under AddressSanitizer + UndefinedBehaviorSanitizer"
 # the sanitizer tree's compile time is most of CI. engine/world/world.cpp takes 13 s at -O1 -g1, 22 s at
 # -O2 -g1, and full -g about doubled it again (measured here, one file at a time).
 "$here/scripts/setup.sh" "$here/build-asan" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
-  -DPREP_SANITIZE=ON -DPREP_BUILD_BENCH=OFF "${unity[@]}"
+  -DPREP_SANITIZE=ON -DPREP_BUILD_BENCH=OFF -DPREP_BUILD_CLI=OFF "${unity[@]}"
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 (cd "$here/build-asan" && ctest --output-on-failure -j "$jobs" -LE slow)
