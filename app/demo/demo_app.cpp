@@ -12,14 +12,15 @@
 #include "app/render/gl_api.h"
 #include "app/ui/panels.h"
 #include "engine/util/files.h"
+#include "engine/world/floor.h"
 
 namespace prep::demo {
 
 using namespace prep::gl;
 
 namespace {
-constexpr float kPi = 3.14159265358979f;
-glm::vec2 forward_of(float heading) { return {std::sin(heading), std::cos(heading)}; }
+using floor_plane::forward_of;
+using floor_plane::kPi;
 }  // namespace
 
 DemoApp::DemoApp(render::GlContext& context, WorldSession& session, GLFWwindow* window, const render::RenderSettings& settings)

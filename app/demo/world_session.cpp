@@ -11,6 +11,7 @@
 #include "app/demo/world_scene.h"
 #include "engine/util/error.h"
 #include "engine/util/files.h"
+#include "engine/world/floor.h"
 
 namespace prep::demo {
 
@@ -46,7 +47,7 @@ const char* phase_name(SessionPhase phase) {
 
 namespace {
 
-glm::vec2 forward_of(float heading) { return {std::sin(heading), std::cos(heading)}; }
+using floor_plane::forward_of;
 
 // Sections of Params the assets (motion graph, T_p, core motions) are built from: a change there needs
 // new assets, not just World::set_params.

@@ -13,7 +13,7 @@ using namespace prep::gl;
 
 namespace {
 
-constexpr float kPi = 3.14159265358979f;
+constexpr float kFullTurn = 2.0f * 3.14159265358979f;  // rad; not kPi: renderer.cpp, in the same unity batch, has one
 
 void triangle(std::vector<OverlayVertex>& out, const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, const glm::vec4& colour) {
   out.push_back({a, colour});
@@ -61,7 +61,7 @@ OverlayGeometry build_overlay(const std::vector<BalanceView>& balance) {
     const glm::vec2 com_floor(b.com.x, b.com.z);
     const int segments = 20;
     for (int s = 0; s < segments; ++s) {
-      const float a0 = 2.0f * kPi * s / segments, a1 = 2.0f * kPi * (s + 1) / segments;
+      const float a0 = kFullTurn * s / segments, a1 = kFullTurn * (s + 1) / segments;
       triangle(g.depth_tested, on_floor(com_floor, kOverlayLift + 0.002f),
                on_floor(com_floor + kComDiscRadius * glm::vec2(std::cos(a0), std::sin(a0)), kOverlayLift + 0.002f),
                on_floor(com_floor + kComDiscRadius * glm::vec2(std::cos(a1), std::sin(a1)), kOverlayLift + 0.002f),

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/control/angles.h"
 #include "engine/synthesis/blending.h"
 #include "engine/synthesis/trajectory.h"
 #include "engine/util/error.h"
@@ -10,7 +11,7 @@
 namespace prep {
 namespace {
 
-constexpr float kPi = 3.14159265358979323846f;
+using control_angles::kPi;
 
 float wrap_angle(float a) {
   while (a > kPi) a -= 2.0f * kPi;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "engine/control/angles.h"
 #include "engine/control/arrival.h"
 #include "engine/control/controller.h"
 #include "engine/control/sarsa.h"
@@ -11,7 +12,7 @@
 namespace prep {
 namespace {
 
-constexpr float kPi = 3.14159265358979323846f;
+using control_angles::kPi;
 
 double median(std::vector<double> v) {
   if (v.empty()) return 0.0;

@@ -2,9 +2,11 @@
 
 #include <cmath>
 
+#include "engine/control/angles.h"
+
 namespace prep {
 namespace {
-constexpr float kPi = 3.14159265358979323846f;
+using control_angles::kPi;
 }
 
 float reward_facing(float theta_g_next, const RewardParams& p) {

@@ -4,10 +4,12 @@
 #include <stdexcept>
 #include <string>
 
+#include "engine/control/angles.h"
+
 namespace prep {
 namespace {
 
-constexpr float kPi = 3.14159265358979323846f;
+using control_angles::kPi;
 
 int positive(int value, const char* field) {
   if (value <= 0) throw std::invalid_argument(std::string("quantization.") + field + " must be positive");

@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/library/angles.h"
 #include "engine/library/rig.h"
 #include "engine/library/spline.h"
 
 namespace prep::library {
 namespace {
-constexpr float kDeg = 3.14159265f / 180.0f;
 constexpr float kGravity = 9.81f;
 constexpr float kLegHandover = 0.35f;  // s over which the legs pass from the walk to the keys and back
 }  // namespace

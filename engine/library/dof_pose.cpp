@@ -3,6 +3,7 @@
 #include <cmath>
 #include <glm/gtc/quaternion.hpp>
 
+#include "engine/library/angles.h"
 #include "engine/library/rig.h"
 #include "engine/library/spline.h"
 
@@ -11,7 +12,6 @@ namespace {
 glm::quat rx(float a) { return glm::angleAxis(a, glm::vec3(1, 0, 0)); }
 glm::quat ry(float a) { return glm::angleAxis(a, glm::vec3(0, 1, 0)); }
 glm::quat rz(float a) { return glm::angleAxis(a, glm::vec3(0, 0, 1)); }
-constexpr float kHalfPi = 1.5707963f;
 // How the spine's flexion, bend and twist divide among the lumbar and the two thoracic joints (the lumbar
 // spine flexes most, the thoracic spine twists most).
 constexpr float kFlexShare[3] = {0.40f, 0.32f, 0.28f};

@@ -5,6 +5,7 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "engine/library/angles.h"
 #include "engine/library/builtin.h"
 #include "engine/library/rig.h"
 #include "engine/library/spline.h"
@@ -14,7 +15,6 @@
 namespace prep::library {
 namespace {
 
-constexpr float kHalfPi = 1.5707963f;
 constexpr float kWristAboveFloor = 0.03f;
 constexpr float kRelease = 0.4f;  // s over which a limb returns to its keyed path after its last support  // wrist joint centre above the floor with the palm flat on it
 

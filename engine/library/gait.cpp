@@ -4,6 +4,7 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 
+#include "engine/library/angles.h"
 #include "engine/library/builtin.h"
 #include "engine/library/rig.h"
 #include "engine/library/spline.h"
@@ -11,9 +12,6 @@
 
 namespace prep::library {
 namespace {
-
-constexpr float kPi = 3.14159265f;
-constexpr float kDeg = kPi / 180.0f;
 
 // Sagittal joint angles of normal adult walking at natural cadence, degrees, every 5% of the cycle from
 // heel strike (0%) to 95%: our reading of the shapes of Winter's (1991) normative ensemble averages.

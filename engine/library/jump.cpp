@@ -1,6 +1,7 @@
 // jump: walk in, gather both feet, counter-movement crouch, two-footed jump over a 0.4 m hurdle with the
 // knees tucked, landing on both feet, absorb, walk on. Flight is ballistic (g = 9.81 m/s^2).
 #include "engine/library/action.h"
+#include "engine/library/angles.h"
 #include "engine/library/rig.h"
 
 #include <array>
@@ -10,8 +11,6 @@
 
 namespace prep::library {
 namespace {
-constexpr float kDeg = 3.14159265f / 180.0f;
-
 void set_arms(DofPose& d, float flex, float elbow, float abduct = 10.0f) {
   for (int side = 0; side < 2; ++side) {
     d.at(side, kShoulderFlex) = flex * kDeg;

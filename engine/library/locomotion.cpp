@@ -1,6 +1,7 @@
 // Locomotion clips of the built-in library: walks, walking turns, side-steps, idle.
 #include <cmath>
 
+#include "engine/library/angles.h"
 #include "engine/library/gait.h"
 #include "engine/library/generated.h"
 #include "engine/library/rig.h"
@@ -9,9 +10,6 @@
 
 namespace prep::library {
 namespace {
-constexpr float kPi = 3.14159265f;
-constexpr float kDeg = kPi / 180.0f;
-
 // A cyclic clip of `cycles` gait cycles from a walker, generated with a cycle of padding on each side so
 // that the supports around the loop seam are the same as anywhere else.
 GeneratedClip walk_clip(const std::string& name, const Walker& walker, int cycles, Role role) {

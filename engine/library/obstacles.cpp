@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "engine/library/action.h"
+#include "engine/library/angles.h"
 #include "engine/library/builtin.h"
 #include "engine/library/rig.h"
 #include "engine/library/spline.h"
@@ -10,8 +11,6 @@
 
 namespace prep::library {
 namespace {
-constexpr float kDeg = 3.14159265f / 180.0f;
-
 // The body's extent along z (joints and end sites) at one frame.
 void z_extent(const Clip& clip, int frame, float& z_min, float& z_max) {
   std::vector<glm::vec3> pos;

@@ -1,11 +1,10 @@
 // punch_left, punch_right and kick: walk in, set up (guard stance / plant foot), strike, recover, walk on.
 #include "engine/library/action.h"
+#include "engine/library/angles.h"
 #include "engine/library/rig.h"
 
 namespace prep::library {
 namespace {
-constexpr float kDeg = 3.14159265f / 180.0f;
-
 // Boxing guard (orthodox: left foot forward): knees soft, chest turned a little to the right, both fists
 // at chin height, elbows down.
 void guard(DofPose& d) {

@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string_view>
 
+#include "engine/motion/joint_names.h"
+
 namespace prep {
 namespace {
 
@@ -15,11 +17,7 @@ struct NamePart {
   std::string word;
 };
 
-std::string lower(std::string_view s) {
-  std::string out(s);
-  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return out;
-}
+using joint_names::lower;
 
 bool starts_with(std::string_view s, std::string_view prefix) { return s.substr(0, prefix.size()) == prefix; }
 bool ends_with(std::string_view s, std::string_view suffix) {

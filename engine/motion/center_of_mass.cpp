@@ -6,6 +6,7 @@
 #include <glm/geometric.hpp>
 #include <stdexcept>
 
+#include "engine/motion/joint_names.h"
 #include "engine/motion/kinematics.h"
 
 namespace prep {
@@ -33,11 +34,7 @@ constexpr float kXiphoidHeight = (145.7f + 215.5f) / (145.7f + 215.5f + 170.7f);
 // A spine joint stands in for the navel or the xiphoid only if it is this close (fraction of trunk height).
 constexpr float kSpineJointTolerance = 0.2f;
 
-std::string lower(const std::string& s) {
-  std::string out = s;
-  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return out;
-}
+using joint_names::lower;
 
 struct Rest {
   std::vector<glm::vec3> positions;

@@ -21,6 +21,7 @@
 #include "engine/synthesis/preparation_run.h"
 #include "engine/synthesis/synthesizer.h"
 #include "engine/util/error.h"
+#include "engine/world/floor.h"
 #include "engine/world/policy_cache.h"
 
 namespace prep {
@@ -36,7 +37,7 @@ double cpu_ms(clockid_t clock) {
   return 1e3 * static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_nsec);
 }
 
-constexpr float kPi = 3.14159265358979f;
+using floor_plane::kPi;
 
 // Runs job(block) for block = 0 .. blocks-1 on `blocks` threads (the calling thread takes block 0) and
 // returns when all are done; the helper threads persist between calls, so a frame costs one wake-up, not

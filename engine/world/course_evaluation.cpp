@@ -13,21 +13,17 @@
 #include <glm/geometric.hpp>
 
 #include "engine/world/courses.h"
+#include "engine/world/floor.h"
 
 namespace prep {
 
 namespace {
 
-constexpr float kPi = 3.14159265358979f;
-constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
-
-float wrap_angle(float a) {  // to (-pi, pi]
-  a = std::fmod(a + kPi, 2.0f * kPi);
-  if (a < 0.0f) a += 2.0f * kPi;
-  return a - kPi;
-}
-
-glm::vec2 floor_xz(const glm::vec3& p) { return {p.x, p.z}; }
+using floor_plane::floor_xz;
+using floor_plane::kPi;
+using floor_plane::wrap_angle;
+// Named for its type: evaluation.cpp, which can share this file's unity translation unit, has a double kNaN.
+constexpr float kFloatNaN = std::numeric_limits<float>::quiet_NaN();
 
 std::string percent(int part, int whole) {
   char b[32];
@@ -47,7 +43,7 @@ nlohmann::json number_or_null(float v) { return std::isfinite(v) ? nlohmann::jso
 }  // namespace
 
 float CourseEvaluation::no_source_mean() const {
-  if (no_source_alpha.empty()) return kNaN;
+  if (no_source_alpha.empty()) return kFloatNaN;
   return static_cast<float>(std::accumulate(no_source_alpha.begin(), no_source_alpha.end(), 0.0) /
                             static_cast<double>(no_source_alpha.size()));
 }
@@ -222,7 +218,7 @@ CourseEvaluation CourseRecorder::finish(const World& world) const {
   e.max_visit_turn_deg = circling.max_turn_deg();
 
   const float straight = e.route_length - world.params().reward.goal_radius;
-  e.path_ratio = e.reached_goal ? e.path_length / std::max(straight, 1e-3f) : kNaN;
+  e.path_ratio = e.reached_goal ? e.path_length / std::max(straight, 1e-3f) : kFloatNaN;
 
   e.objects_unused = 0;
   for (const WorldObject& o : world.objects()) {
@@ -291,7 +287,7 @@ std::vector<CourseEvaluation> evaluate_courses(const std::vector<Scenario>& cour
 // Totals
 
 float percentile(std::vector<float> values, float p) {
-  if (values.empty()) return kNaN;
+  if (values.empty()) return kFloatNaN;
   std::sort(values.begin(), values.end());
   const float rank = std::clamp(p, 0.0f, 100.0f) / 100.0f * static_cast<float>(values.size() - 1);
   const size_t lo = static_cast<size_t>(std::floor(rank));
@@ -341,13 +337,13 @@ CourseTotals course_totals(const std::vector<CourseEvaluation>& courses) {
   t.path_median = percentile(ratios, 50.0f);
   t.path_p95 = percentile(ratios, 95.0f);
   t.no_source_median = percentile(no_source, 50.0f);
-  t.no_source_mean = no_source.empty() ? kNaN
+  t.no_source_mean = no_source.empty() ? kFloatNaN
                                        : static_cast<float>(std::accumulate(no_source.begin(), no_source.end(), 0.0) /
                                                             static_cast<double>(no_source.size()));
   t.relax_median = percentile(relax, 50.0f);
-  t.relax_max = relax.empty() ? kNaN : *std::max_element(relax.begin(), relax.end());
+  t.relax_max = relax.empty() ? kFloatNaN : *std::max_element(relax.begin(), relax.end());
   t.kept_pairs = static_cast<int>(kept.size());
-  t.kept_min = kept.empty() ? kNaN : *std::min_element(kept.begin(), kept.end());
+  t.kept_min = kept.empty() ? kFloatNaN : *std::min_element(kept.begin(), kept.end());
   t.kept_median = percentile(kept, 50.0f);
 
   // The acceptance, one line each; a measure with nothing to measure fails.

@@ -7,13 +7,18 @@
 #include <glm/geometric.hpp>
 
 #include "engine/library/generated.h"
+#include "engine/world/floor.h"
 
 namespace prep {
 
 namespace {
 
-constexpr float kPi = 3.14159265358979f;
-constexpr float kDegrees = kPi / 180.0f;
+using floor_plane::forward_of;
+using floor_plane::is_across;
+using floor_plane::kDegrees;
+using floor_plane::kPi;
+using floor_plane::left_of;
+using floor_plane::wrap_angle;
 
 // SplitMix64 (Steele, Lea and Flood 2014): a tiny generator whose output is fixed by its definition, so a
 // course is the same scenario with any compiler and standard library.
@@ -39,20 +44,9 @@ class Random {
   std::uint64_t state_;
 };
 
-glm::vec2 forward_of(float heading) { return {std::sin(heading), std::cos(heading)}; }
-glm::vec2 left_of(float heading) { return {std::cos(heading), -std::sin(heading)}; }
-
-float wrap_angle(float a) {  // to (-pi, pi]
-  a = std::fmod(a + kPi, 2.0f * kPi);
-  if (a < 0.0f) a += 2.0f * kPi;
-  return a - kPi;
-}
-
 bool has(const std::vector<TargetAction>& actions, TargetAction a) {
   return std::find(actions.begin(), actions.end(), a) != actions.end();
 }
-
-bool is_across(ObjectType t) { return t == ObjectType::Bar || t == ObjectType::Beam || t == ObjectType::Hurdle; }
 
 // [width, height, depth] of the obstacle a built-in clip was made for; the width is the course's.
 glm::vec3 clip_obstacle(const char* clip_name) {

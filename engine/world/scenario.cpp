@@ -5,13 +5,14 @@
 
 #include "engine/util/error.h"
 #include "engine/util/files.h"
+#include "engine/world/floor.h"
 
 namespace prep {
 namespace {
 
 using nlohmann::json;
 
-constexpr float kDegrees = 3.14159265358979f / 180.0f;
+using floor_plane::kDegrees;
 
 struct Names {
   ObjectType type;

@@ -5,10 +5,12 @@
 
 #include <glm/geometric.hpp>
 
+#include "engine/world/floor.h"
+
 namespace prep {
 
 namespace {
-constexpr float kPi = 3.14159265358979f;
+using floor_plane::kPi;
 }
 
 float bearing_to(glm::vec2 position, float heading, glm::vec2 target) {

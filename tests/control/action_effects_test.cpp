@@ -4,12 +4,13 @@
 
 #include "engine/util/error.h"
 #include "hand_made.h"
+#include "tests/support/angles.h"
 
 using namespace prep;
 
 namespace {
 float eq1(float alpha, float C, float c) { return c * std::sqrt(1.0f - std::pow(1.0f - alpha, C)); }
-constexpr float kPi = 3.14159265358979f;
+using test::kPi;
 }  // namespace
 
 TEST_CASE("an action of a straight walk: one gait cycle, shortened by (1 - w_r) as alpha rises") {

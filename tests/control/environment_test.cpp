@@ -5,11 +5,12 @@
 
 #include "engine/control/actions.h"
 #include "hand_made.h"
+#include "tests/support/angles.h"
 
 using namespace prep;
 
 namespace {
-constexpr float kPi = 3.14159265358979f;
+using test::kPi;
 }
 
 TEST_CASE("fast_atan2 matches atan2 everywhere") {

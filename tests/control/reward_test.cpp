@@ -3,11 +3,12 @@
 #include <cmath>
 
 #include "engine/control/reward.h"
+#include "tests/support/angles.h"
 
 using namespace prep;
 
 namespace {
-constexpr float kPi = 3.14159265358979f;
+using test::kPi;
 }
 
 TEST_CASE("Eq. 14-17 at a hand-computed state") {

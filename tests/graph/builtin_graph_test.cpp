@@ -5,15 +5,13 @@
 
 #include "engine/graph/motion_graph.h"
 #include "engine/library/builtin.h"
+#include "tests/graph/builtin_set.h"
 #include "tests/graph/graph_checks.h"
 
 using namespace prep;
 
 namespace {
-const MotionSet& builtin() {
-  static const MotionSet set = make_builtin_motion_set(Params());
-  return set;
-}
+using test::builtin;
 }  // namespace
 
 TEST_CASE("motion graph: built-in library hierarchy, at least four core nodes, built in under 0.5 s") {

@@ -8,16 +8,14 @@
 
 #include "engine/library/builtin.h"
 #include "engine/motion/kinematics.h"
+#include "tests/graph/builtin_set.h"
 #include "tests/support/paths.h"
 
 using namespace prep;
 
 namespace {
 
-const MotionSet& builtin() {
-  static const MotionSet set = make_builtin_motion_set(Params());
-  return set;
-}
+using test::builtin;
 
 struct World {
   std::vector<glm::vec3> p;

@@ -145,15 +145,15 @@ TEST_CASE("obstacles, ball, goal and source of influence appear where they stand
   Renderer renderer;
   Scene scene;
   SceneObject bar;
-  bar.type = ObjectType::Bar;
+  bar.type = render::ObjectType::Bar;
   bar.position = {-1.5f, 0.0f, 0.0f};
   bar.size = {1.2f, 0.65f, 0.10f};
   SceneObject hurdle;
-  hurdle.type = ObjectType::Hurdle;
+  hurdle.type = render::ObjectType::Hurdle;
   hurdle.position = {1.5f, 0.0f, 0.0f};
   hurdle.size = {1.2f, 0.4f, 0.03f};
   SceneObject ball;
-  ball.type = ObjectType::Ball;
+  ball.type = render::ObjectType::Ball;
   ball.position = {0.0f, 0.0f, 1.0f};
   ball.size = glm::vec3(0.3f);
   ball.is_source = true;
@@ -197,7 +197,7 @@ TEST_CASE("scene primitives: one capsule per bone and End Site, the head whole, 
   }
   ScenePrimitives prims;
   SceneObject bar;
-  bar.type = ObjectType::Bar;
+  bar.type = render::ObjectType::Bar;
   bar.size = {1.2f, 0.65f, 0.08f};
   append_object_primitives(bar, prims);
   REQUIRE(prims.boxes.size() == 3);  // two posts and the bar

@@ -54,7 +54,7 @@ TEST_CASE("a box's shadow darkens the floor where the light puts it, and only th
   Renderer renderer;
   Scene scene;
   SceneObject box;
-  box.type = ObjectType::Box;
+  box.type = render::ObjectType::Box;
   box.size = {0.6f, 1.0f, 0.6f};
   scene.objects = {box};
   scene.focus = {0.0f, 0.5f, 0.0f};

@@ -13,21 +13,16 @@
 #include "engine/world/policy_cache.h"
 #include "engine/world/steering.h"
 #include "engine/world/world.h"
+#include "tests/support/angles.h"
 #include "tests/support/paths.h"
+#include "tests/world/builtin_assets.h"
 
 using namespace prep;
 
 namespace {
 
-constexpr float kPi = 3.14159265358979f;
-
-std::shared_ptr<const WorldAssets> builtin_assets() {
-  static std::shared_ptr<const WorldAssets> assets = [] {
-    const Scenario s = load_scenario(test::repo() + "/assets/scenarios/obstacles.json");
-    return prepare_world_assets(s, load_scenario_params(s), test::tmp_dir() + "/policy-cache");
-  }();
-  return assets;
-}
+using test::builtin_assets;
+using test::kPi;
 
 std::string obstacle(const char* type, float z, float width, float height, float depth) {
   return std::string("{\"type\": \"") + type + "\", \"position\": [0, " + std::to_string(z) + "], \"size\": [" +

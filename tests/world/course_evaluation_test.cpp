@@ -15,9 +15,10 @@ using namespace prep;
 
 namespace {
 
-// The built-in library's assets and policy, made once per test binary (cached under the build's scratch
-// folder, as in world_test.cpp).
-std::shared_ptr<const WorldAssets> builtin_assets() {
+// The built-in library's assets and policy with the default Params, made once per test binary (cached
+// under the build's scratch folder, as in world_test.cpp). Not builtin_assets(), which has the obstacles
+// scenario's Params (tests/world/builtin_assets.h).
+std::shared_ptr<const WorldAssets> default_assets() {
   static std::shared_ptr<const WorldAssets> assets = [] {
     Scenario s;
     return prepare_world_assets(s, Params{}, test::tmp_dir() + "/policy-cache");
@@ -137,7 +138,7 @@ TEST_CASE("circling: an orbit round the goal turns past 360 degrees, a pass thro
 
 TEST_CASE("a straight walk to the goal: path ratio at least 1, no circling, no source, the run ends 2.5 s after") {
   const Scenario s = straight_course(8.0f);
-  const CourseEvaluation e = evaluate_course(s, builtin_assets());
+  const CourseEvaluation e = evaluate_course(s, default_assets());
   REQUIRE(e.reached_goal);
   CHECK(e.route_length == doctest::Approx(8.0f));
   // Walked from the start to the goal's 0.4 m edge: at least the 7.6 m of the straight line, and a
@@ -161,7 +162,7 @@ TEST_CASE("a straight walk to the goal: path ratio at least 1, no circling, no s
 
 TEST_CASE("a beam and a hurdle 2 m apart: the kept preparation is the lowest alpha between the two launches") {
   const Scenario s = straight_course(9.0f, {across(ObjectType::Beam, 4.0f, 1.2f, 0.2f), across(ObjectType::Hurdle, 6.0f, 0.45f, 0.1f)});
-  const CourseEvaluation e = evaluate_course(s, builtin_assets());
+  const CourseEvaluation e = evaluate_course(s, default_assets());
   REQUIRE(e.launches.size() == 2);
   CHECK(e.launches[0].action == TargetAction::Duck);
   CHECK(e.launches[1].action == TargetAction::Jump);
@@ -188,14 +189,14 @@ TEST_CASE("a beam and a hurdle 2 m apart: the kept preparation is the lowest alp
 
   // The same two obstacles 5 m apart are no close pair.
   const Scenario apart = straight_course(12.0f, {across(ObjectType::Beam, 4.0f, 1.2f, 0.2f), across(ObjectType::Hurdle, 9.0f, 0.45f, 0.1f)});
-  CHECK(evaluate_course(apart, builtin_assets()).kept.empty());
+  CHECK(evaluate_course(apart, default_assets()).kept.empty());
 }
 
 TEST_CASE("four random courses through the evaluator on two threads: sane measures, the same as run alone") {
   CourseOptions o;
   o.seed = 3;
   const std::vector<Scenario> courses = make_courses(o, 4);
-  const std::vector<CourseEvaluation> runs = evaluate_courses(courses, builtin_assets(), 2);
+  const std::vector<CourseEvaluation> runs = evaluate_courses(courses, default_assets(), 2);
   REQUIRE(runs.size() == 4);
   for (size_t i = 0; i < runs.size(); ++i) {
     const CourseEvaluation& e = runs[i];
@@ -224,7 +225,7 @@ TEST_CASE("four random courses through the evaluator on two threads: sane measur
     }
     CHECK(e.circling_seconds <= e.seconds);
   }
-  const CourseEvaluation alone = evaluate_course(courses[1], builtin_assets());
+  const CourseEvaluation alone = evaluate_course(courses[1], default_assets());
   CHECK(alone.seconds == runs[1].seconds);
   CHECK(alone.path_length == runs[1].path_length);
   CHECK(alone.alpha == runs[1].alpha);

@@ -9,17 +9,18 @@
 #include <glm/geometric.hpp>
 
 #include "engine/library/generated.h"
+#include "tests/support/angles.h"
 
 using namespace prep;
 
 namespace {
 
-constexpr float kPi = 3.14159265358979f;
+using test::kPi;
 
 glm::vec2 forward_of(float heading) { return {std::sin(heading), std::cos(heading)}; }
 glm::vec2 left_of(float heading) { return {std::cos(heading), -std::sin(heading)}; }
 float wrap(float a) { return std::remainder(a, 2.0f * kPi); }
-bool across(ObjectType t) { return t == ObjectType::Bar || t == ObjectType::Beam || t == ObjectType::Hurdle; }
+bool is_across(ObjectType t) { return t == ObjectType::Bar || t == ObjectType::Beam || t == ObjectType::Hurdle; }
 
 // The footprint of an object as the generator documents it: width x depth, a ball's size, an opponent's 0.6 m.
 glm::vec2 half_extent(const ScenarioObject& o) {
@@ -125,7 +126,7 @@ TEST_CASE("random courses: every kind, the clips' obstacle sizes, angles within 
       if (obj.type == ObjectType::Hurdle) CHECK(obj.size.y == doctest::Approx(hurdle.height));
       if (obj.type == ObjectType::Bar) CHECK(obj.size.z == doctest::Approx(bar.z_far - bar.z_near));
       if (obj.type == ObjectType::Ball) CHECK(obj.size == glm::vec3(0.22f));
-      if (across(obj.type)) {
+      if (is_across(obj.type)) {
         CHECK(obj.size.x >= 4.5f);
         // The route crosses it once, within 0.8 m of its middle, at most 30 degrees off its normal.
         const Crossing c = crossing_of(obj, route);

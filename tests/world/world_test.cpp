@@ -8,20 +8,13 @@
 
 #include "engine/world/policy_cache.h"
 #include "tests/support/paths.h"
+#include "tests/world/builtin_assets.h"
 
 using namespace prep;
 
 namespace {
 
-// The built-in library's assets and policy, made once per test binary (the policy is cached under the
-// build's scratch folder, keyed by the Params hash, so reruns skip training).
-std::shared_ptr<const WorldAssets> builtin_assets() {
-  static std::shared_ptr<const WorldAssets> assets = [] {
-    const Scenario s = load_scenario(test::repo() + "/assets/scenarios/obstacles.json");
-    return prepare_world_assets(s, load_scenario_params(s), test::tmp_dir() + "/policy-cache");
-  }();
-  return assets;
-}
+using test::builtin_assets;
 
 Scenario scenario(const std::string& name) { return load_scenario(test::repo() + "/assets/scenarios/" + name + ".json"); }
 
