@@ -63,7 +63,7 @@ std::vector<glm::vec2> red_pixels(const render::Image& image) {
 
 // The capsules of a body deeper than the tolerance in an object's solids, found with the engine's own
 // pieces (object frame, segment-to-box distance), as ClearanceMeter::measure does for a world.
-std::vector<int> deep_in(const std::vector<PlacedCapsule>& capsules, const render::SceneObject& o, ObjectType type) {
+std::vector<int> deep_in(const std::vector<PlacedCapsule>& capsules, const render::SceneObject& o, prep::ObjectType type) {
   std::vector<int> out;
   const std::vector<ObjectSolid> solids = object_solids(type, o.size);
   for (size_t k = 0; k < capsules.size(); ++k) {
@@ -98,7 +98,7 @@ TEST_CASE("renderer: a body standing in a bar shows its flagged capsules in red,
   const BodyVolumes volumes(*skeleton);
   std::vector<PlacedCapsule> placed;
   volumes.place(character.joint_positions, character.joint_rotations, placed);
-  const std::vector<int> deep = deep_in(placed, bar, ObjectType::Bar);
+  const std::vector<int> deep = deep_in(placed, bar, prep::ObjectType::Bar);
   REQUIRE_FALSE(deep.empty());
   CHECK(deep.size() < placed.size() / 3);  // the trunk's middle, not the whole body
   std::vector<PlacedCapsule> deep_capsules;

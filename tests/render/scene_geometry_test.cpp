@@ -96,13 +96,13 @@ TEST_CASE("obstacle boxes and the ball are the object solids, placed in the clea
   const float heading = 0.6f;
   struct Case {
     render::ObjectType render;
-    ObjectType engine;
+    prep::ObjectType engine;
     glm::vec3 size;
   };
-  for (const Case& k : {Case{render::ObjectType::Bar, ObjectType::Bar, {3.0f, 0.7f, 0.1f}},
-                        Case{render::ObjectType::Beam, ObjectType::Beam, {2.0f, 1.2f, 0.0f}},  // default rail depth
-                        Case{render::ObjectType::Hurdle, ObjectType::Hurdle, {1.5f, 0.45f, 0.05f}},
-                        Case{render::ObjectType::Ball, ObjectType::Ball, {0.22f, 0.22f, 0.22f}}}) {
+  for (const Case& k : {Case{render::ObjectType::Bar, prep::ObjectType::Bar, {3.0f, 0.7f, 0.1f}},
+                        Case{render::ObjectType::Beam, prep::ObjectType::Beam, {2.0f, 1.2f, 0.0f}},  // default rail depth
+                        Case{render::ObjectType::Hurdle, prep::ObjectType::Hurdle, {1.5f, 0.45f, 0.05f}},
+                        Case{render::ObjectType::Ball, prep::ObjectType::Ball, {0.22f, 0.22f, 0.22f}}}) {
     CAPTURE(render::object_type_name(k.render));
     render::SceneObject o;
     o.type = k.render;
