@@ -133,6 +133,10 @@ void ClearanceMeter::measure(const World& world) {
   const float tolerance_objects = clearance_metric::kObjectTolerance, tolerance_bodies = clearance_metric::kCharacterTolerance;
   constexpr float kBodyReach = 1.6f;  // m: no capsule is farther than this from the root on the floor
 
+  // Each object's solids, once per frame for every character.
+  solids_.resize(objects.size());
+  for (size_t k = 0; k < objects.size(); ++k) solids_[k] = object_solids(objects[k].spec.type, objects[k].spec.size);
+
   for (size_t i = 0; i < n; ++i) {
     CharacterClearance& out = result_[i];
     std::vector<bool> deep(capsules.size(), false);
@@ -144,7 +148,7 @@ void ClearanceMeter::measure(const World& world) {
       const glm::vec2 at(o.position.x, o.position.z);
       const float object_reach = 0.5f * glm::length(o.spec.size) + kHurdleFootLength;
       if (glm::length(at - root) > object_reach + kBodyReach) continue;
-      const std::vector<ObjectSolid> solids = object_solids(o.spec.type, o.spec.size);
+      const std::vector<ObjectSolid>& solids = solids_[k];
       for (size_t c = 0; c < capsules.size(); ++c) {
         for (const ObjectSolid& s : solids) {
           const float d = capsule_solid_distance(placed_[i][c], s, at, o.spec.heading);

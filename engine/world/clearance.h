@@ -69,6 +69,7 @@ class ClearanceMeter {
   BodyVolumes volumes_;
   std::vector<CharacterClearance> result_;
   std::vector<std::vector<PlacedCapsule>> placed_;
+  std::vector<std::vector<ObjectSolid>> solids_;  // per object, this frame
   std::vector<glm::vec3> positions_;
   std::vector<glm::quat> rotations_;
 };

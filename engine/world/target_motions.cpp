@@ -137,7 +137,7 @@ struct Strike {
   float speed = 0.0f;      // m/s: the effector's speed over the floor there
 };
 
-Strike strike_of(const MotionSet& set, const MotionClip& mc, TargetAction action, int peak_frame) {
+Strike strike_of(const MotionSet& set, const BodyVolumes& volumes, const MotionClip& mc, TargetAction action, int peak_frame) {
   Strike s;
   const bool kick = action == TargetAction::Kick;
   if (peak_frame < 0 || !(kick || action == TargetAction::PunchLeft || action == TargetAction::PunchRight)) return s;
@@ -180,7 +180,6 @@ Strike strike_of(const MotionSet& set, const MotionClip& mc, TargetAction action
   glm::vec2 travel = floor_xz(travel3);
   travel = glm::length(travel) > 1e-6f ? glm::normalize(travel) : fwd;
   effector_at(s.frame, side);  // FK of the strike frame again (effector_at(s.frame - 1) replaced it)
-  const BodyVolumes volumes(skeleton);
   std::vector<PlacedCapsule> placed;
   volumes.place(positions, rotations, placed);
   const BodyPart foot = side == kLeft ? BodyPart::LeftFoot : BodyPart::RightFoot;
@@ -299,7 +298,7 @@ WorldAssets make_world_assets(std::shared_ptr<const MotionSet> set, const Params
     t.reach = glm::dot(q, forward_of(h));
     t.lateral = glm::dot(q, left_of(h));
     t.release_frame = release_frame_of(*set, mc, t.action, t.reference_frame, meets, peak_frame);
-    const Strike strike = strike_of(*set, mc, t.action, peak_frame);
+    const Strike strike = strike_of(*set, volumes, mc, t.action, peak_frame);
     if (strike.frame >= 0) {
       t.strike_frame = strike.frame;
       t.strike_speed = strike.speed;
