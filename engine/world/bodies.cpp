@@ -25,12 +25,18 @@ void World::keep_apart() {
       WorldCharacter& b = characters_[j];
       const glm::vec2 d = b.position - a.position;
       const float distance = glm::length(d);
-      if (distance >= kPersonalSpace) continue;
+      if (distance >= kFacingSpace) continue;
       const glm::vec2 dir = distance > 1e-4f ? d / distance : forward_of(a.heading);
+      // Two facing each other hold their arms out toward each other (a guard, a fighting stance turned side
+      // on, the lead hands near the middle): they keep farther apart, the more squarely they face.
+      const float facing = std::clamp(glm::dot(forward_of(a.heading), dir), 0.0f, 1.0f) *
+                           std::clamp(-glm::dot(forward_of(b.heading), dir), 0.0f, 1.0f);
+      const float space = kPersonalSpace + (kFacingSpace - kPersonalSpace) * facing;
+      if (distance >= space) continue;
       const float va = std::max(0.0f, glm::dot(runtime_[i]->velocity, dir));
       const float vb = std::max(0.0f, -glm::dot(runtime_[j]->velocity, dir));
       const float share_a = va + vb > 1e-4f ? va / (va + vb) : 0.5f;
-      const float gap = kPersonalSpace - distance;
+      const float gap = space - distance;
       // The one walking in is also turned aside, toward the side its way already leans to, so that it goes
       // round the other instead of pressing against it.
       const glm::vec2 across(-dir.y, dir.x);
@@ -41,6 +47,21 @@ void World::keep_apart() {
       displace(static_cast<int>(i), share_a * gap * (-dir + aside(runtime_[i]->velocity)));
       displace(static_cast<int>(j), (1.0f - share_a) * gap * (dir + aside(runtime_[j]->velocity)));
     }
+}
+
+// A punched opponent stops fighting and steps aside, out of the way its striker is going (to the side it
+// already stands on, and a little back), then stands: left where it was hit, it would stand in the user's
+// way, and a user walking on would be pressed between it and the next opponent.
+void World::defeat(int opponent, int striker) {
+  WorldCharacter& o = characters_[static_cast<size_t>(opponent)];
+  const WorldCharacter& s = characters_[static_cast<size_t>(striker)];
+  o.defeated = true;
+  const glm::vec2 way = forward_of(s.heading);
+  glm::vec2 away = o.position - s.position;
+  away = glm::length(away) > 1e-4f ? glm::normalize(away) : way;
+  const glm::vec2 left = floor_plane::left_of(s.heading);
+  const glm::vec2 side = glm::dot(o.position - s.position, left) >= 0.0f ? left : -left;
+  o.goal = {o.position + kStepAside * glm::normalize(side + 0.5f * away)};
 }
 
 void World::displace(int index, glm::vec2 offset) {

@@ -25,8 +25,6 @@ glm::vec3 closest_on_segment(glm::vec3 p, glm::vec3 a, glm::vec3 b) {
   return a + t * ab;
 }
 
-bool is_punch(TargetAction a) { return a == TargetAction::PunchLeft || a == TargetAction::PunchRight; }
-
 // A punch's striking hand and forearm (the side the action names).
 bool is_striking_limb(TargetAction punch, BodyPart part) {
   if (punch == TargetAction::PunchLeft) return part == BodyPart::LeftHand || part == BodyPart::LeftArm;
@@ -163,10 +161,11 @@ void ClearanceMeter::measure(const World& world) {
       if (j == i || glm::length(characters[j].position - root) > 2.0f * kBodyReach) continue;
       const WorldCharacter& other = characters[j];
       for (size_t c = 0; c < capsules.size(); ++c) {
-        if (me.in_target && is_punch(me.playing) && is_striking_limb(me.playing, capsules[c].part)) continue;
+        const bool my_strike = me.arm_out_at == static_cast<int>(j) && is_striking_limb(me.playing, capsules[c].part);
+        if (my_strike) continue;
         const PlacedCapsule& pc = placed_[i][c];
         for (size_t e = 0; e < capsules.size(); ++e) {
-          if (other.in_target && is_punch(other.playing) && is_striking_limb(other.playing, capsules[e].part)) continue;
+          if (other.arm_out_at == static_cast<int>(i) && is_striking_limb(other.playing, capsules[e].part)) continue;
           const PlacedCapsule& pe = placed_[j][e];
           const float d = segment_segment_distance(pc.a, pc.b, pe.a, pe.b) - pc.radius - pe.radius;
           if (d < out.character.distance)

@@ -6,7 +6,8 @@
 //   exact: it is convex along the segment, so a golden-section search finds its minimum) and the ball's
 //   sphere, less the capsule's radius.
 // - Body to body: each capsule pair (segment to segment), less both radii. A punch's hand and forearm
-//   against the character it is launched at do not count while the punch plays: meeting it is the point.
+//   against the character it is launched at do not count from the launch until the arm is back in guard
+//   (WorldCharacter::arm_out_at): meeting it is the point.
 #pragma once
 
 #include <limits>

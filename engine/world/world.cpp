@@ -198,11 +198,7 @@ void World::control(int index) {
     ControlInput in;
     in.position = c.position;
     in.heading = c.heading;
-    if (c.control == Control::Opponent) in.goal = c.has_source ? c.source : c.position;
-    else in.goal = c.goal.empty() ? c.position : c.goal.front();
-    // Unattended (auto), the user meets the opponent that is its source, as a player steering with the
-    // keys would: its launch point is the goal until it is defeated (world.h).
-    if (c.control == Control::User && auto_launch_ && c.source_character >= 0) in.goal = c.source;
+    in.goal = steering_goal(c).value_or(c.position);
     // No source: one far behind, beyond the last distance bin, never to be reached (world.h).
     in.source = c.has_source ? c.source : c.position - 100.0f * forward_of(c.heading);
     // A source that closes in (an opponent walking up) is shown where a still one would leave the same
@@ -222,7 +218,7 @@ void World::control(int index) {
     // motion starts at once, entered at the frame of its loop that best matches the frame playing (the
     // graph's point-cloud distance) and cross-faded over GraphParams::blend_s. Loops and the returns from
     // target motions still follow graph edges.
-    const bool stay = (c.control == Control::User && c.reached_goal) || (c.control == Control::Opponent && c.defeated);
+    const bool stay = (c.control == Control::User && c.reached_goal) || (c.control == Control::Opponent && c.defeated && c.goal.empty());
     const int wanted = stay ? assets_->idle_node : assets_->core_nodes[static_cast<size_t>(d.motion)];
     if (wanted != rt.stream.node()) {
       rt.begin_fade(c.pose, params_.graph.blend_s);
@@ -277,6 +273,10 @@ bool World::start_target(int index, TargetAction action, int object, int target_
   // (steer_tightly), and the clip starts facing the obstacle's crossing or the ball, the rest of the turn
   // taken in the launch's cross-fade. Without preparation (the naive baseline) it launches as it comes.
   float heading = c.heading;
+  if (at_source && target_character >= 0 && preparation_) {  // a punch is thrown at the one it is meant for
+    const glm::vec2 facing = characters_[static_cast<size_t>(target_character)].position - c.position;
+    if (glm::length(facing) > 1e-4f) heading = std::atan2(facing.x, facing.y);
+  }
   if (at_source && object >= 0 && preparation_) {
     const WorldObject& o = objects_[static_cast<size_t>(object)];
     glm::vec2 facing = floor_xz(o.position) - c.position;
@@ -292,6 +292,7 @@ bool World::start_target(int index, TargetAction action, int object, int target_
   for (size_t k = 0; !queued && k < assets_->core_nodes.size(); ++k) queued = rt.stream.queue(assets_->core_nodes[k]);
   c.in_target = true;
   c.playing = action;
+  c.arm_out_at = action == TargetAction::PunchLeft || action == TargetAction::PunchRight ? target_character : -1;
   c.clip = t.clip;
   rt.target_object = object;
   rt.target_character = target_character;
@@ -354,9 +355,15 @@ void World::try_auto_launch(int index) {
   if (c.control == Control::User && !auto_launch_) return;
   if (c.control == Control::Opponent && (c.defeated || time_ - c.last_attack < rules_.cooldown_s)) return;
   if (assets_->target(c.prepared_for).clip < 0) return;
+  // A punch is not thrown into one coming at the character: it waits until that strike is over, then
+  // counters. Thrown together, the two would strike through each other's arms.
+  if (c.source_character >= 0 && striking_at(c.source_character, index)) return;
   // On the launch point, or arrived and prepared enough to launch where it stands (world.h, arrival.h).
   const bool on_point = c.to_launch <= 0.0f;
-  const bool ready = c.arrived && c.alpha >= params_.runtime.launch_alpha;
+  // An opponent holding short of its point (update_arrival) waits there for the user to come within its
+  // reach: a punch launched from farther would strike the air.
+  const bool ready = c.arrived && c.alpha >= params_.runtime.launch_alpha &&
+                     (c.control != Control::Opponent || c.to_launch <= kOpponentStrikeSlack);
   if (!on_point && !ready) return;
   // Square to the obstacle or the ball first while the arrival turns the character (steer_tightly); one
   // that stands still not square launches anyway, the rest of the turn taken in the launch (start_target).
@@ -367,6 +374,31 @@ void World::try_auto_launch(int index) {
 }
 
 
+
+// Two characters walking to strike each other make for each other's launch point, until that is near:
+// steered to a point at its feet a character would swing from side to side, so from there it makes for
+// the other character itself (the arrival stops it at the launch point).
+glm::vec2 World::character_goal(const WorldCharacter& c) {
+  return glm::length(c.source - c.position) > kLaunchPointNear ? c.source : c.source_object_position;
+}
+
+// Where the character makes for (none: it stays): the controller's goal, and the tight turns' (steer_tightly).
+std::optional<glm::vec2> World::steering_goal(const WorldCharacter& c) const {
+  // An opponent makes for the user, or steps aside once defeated (defeat).
+  if (c.control == Control::Opponent && c.has_source) return character_goal(c);
+  // Unattended (auto), the user meets the opponent that is its source, as a player steering with the
+  // keys would, until it is defeated (world.h); then the scenario's goal again.
+  if (c.control == Control::User && auto_launch_ && c.source_character >= 0) return character_goal(c);
+  if (c.goal.empty()) return std::nullopt;
+  return c.goal.front();
+}
+
+bool World::striking_at(int striker, int target) const {
+  const WorldCharacter& s = characters_[static_cast<size_t>(striker)];
+  const Runtime& rt = *runtime_[static_cast<size_t>(striker)];
+  if (!s.in_target || rt.target_character != target) return false;
+  return !rt.struck || time_ - rt.struck_time < kStrikeRecovery;
+}
 
 // The level kept between close targets (RuntimeParams::kept_alpha), as the nearest level an action may choose.
 int World::kept_level() const {
@@ -408,8 +440,8 @@ void World::steer_tightly(int index) {
   const float max_rate = params_.runtime.tight_turn_deg_per_s * kPi / 180.0f;
   TightTurn turn;
   // Squaring up to the obstacle arrived at comes first (steering.h).
-  if (max_rate > 0.0f && c.control == Control::Opponent && c.has_source && rt.controller->arrived()) {
-    // An opponent holding its ground turns to keep facing the user.
+  if (max_rate > 0.0f && c.has_source && c.source_character >= 0 && rt.controller->arrived()) {
+    // Two characters arrived at striking distance turn to keep facing each other.
     const glm::vec2 d = c.source_object_position - c.position;
     if (glm::length(d) > 1e-3f) turn.rate = squaring_rate(c.heading, std::atan2(d.x, d.y), max_rate);
   }
@@ -424,8 +456,8 @@ void World::steer_tightly(int index) {
       if (glm::length(d) > 1e-3f) turn.rate = squaring_rate(c.heading, std::atan2(d.x, d.y), max_rate);
     }
   }
-  const bool steering = turn.rate == 0.0f && max_rate > 0.0f && c.control == Control::User && !c.goal.empty() &&
-                        !c.reached_goal && !rt.controller->arrived() &&
+  const std::optional<glm::vec2> goal = steering_goal(c);
+  const bool steering = turn.rate == 0.0f && max_rate > 0.0f && goal && !c.reached_goal && !rt.controller->arrived() &&
                         !(c.source_in_range && c.source_ahead);  // a source's approach is the policy's
   // Beside the part of an obstacle's span a launch may start from (near its end, or past it): the character
   // turns to the launch point and walks along to it (then squares up on arrival), rather than into the end.
@@ -433,7 +465,7 @@ void World::steer_tightly(int index) {
                        !rt.controller->arrived();
   if (steering || to_span) {
     const float radius = walking_turn_rate_ > 0.0f ? rt.speed / walking_turn_rate_ : 0.0f;
-    turn = tight_turn(c.position, c.heading, to_span ? c.source : c.goal.front(), radius, max_rate);
+    turn = tight_turn(c.position, c.heading, to_span ? c.source : *goal, radius, max_rate);
   }
   rt.stride_scale += dt / (dt + kStrideTime) * (turn.stride - rt.stride_scale);
   if (rt.reseed) return;  // the stream was just restarted: it has no step of its own yet
@@ -470,7 +502,10 @@ void World::steer_tightly(int index) {
 
 void World::update_goal(int index) {
   WorldCharacter& c = characters_[static_cast<size_t>(index)];
-  if (c.control != Control::User) return;
+  if (c.control == Control::Opponent) {  // a defeated one stepping aside (defeat)
+    if (!c.goal.empty() && glm::length(c.goal.front() - c.position) <= params_.reward.goal_radius) c.goal.clear();
+    return;
+  }
   auto reached = [&](glm::vec2 g) {
     if (glm::length(g - c.position) <= params_.reward.goal_radius) return true;
     return c.goal.size() > 1 && passed_waypoint(c.position, c.heading, g, params_.runtime.waypoint_pass_radius);
@@ -542,13 +577,14 @@ void World::step_character(int index) {
       rt.begin_fade(c.pose, params_.graph.blend_s);
     } else if (!rt.struck && rt.stream.clip_frame() >= strike_frame) {
       rt.struck = true;  // the strike lands: the ball flies, the opponent is hit
+      rt.struck_time = time_;
       if (c.playing == TargetAction::Kick && rt.target_object >= 0) {
         // The ball leaves along the kick at 1.3 times the foot's speed: a light ball struck by a much heavier
         // leg with a restitution of about 0.5 (at least a pass's 6 m/s).
         objects_[static_cast<size_t>(rt.target_object)].velocity = std::max(6.0f, 1.3f * target.strike_speed) * forward_of(c.heading);
       }
       if (rt.target_character >= 0 && characters_[static_cast<size_t>(rt.target_character)].control == Control::Opponent)
-        characters_[static_cast<size_t>(rt.target_character)].defeated = true;
+        defeat(rt.target_character, index);
     } else if (rt.struck && release_for_next_source(index)) {
       // Left for prepared locomotion (world.h, kept preparation).
     } else if (!rt.stream.has_ahead(0.0f)) {
@@ -599,6 +635,7 @@ void World::step_character(int index) {
     out = faded;
     rt.fade_left -= dt;
   }
+  if (!c.in_target && rt.fade_left <= 0.0f) c.arm_out_at = -1;
   c.pose = out;
   const glm::vec2 previous_position = c.position;
   c.position = floor_xz(out.root_position);

@@ -119,12 +119,24 @@ struct TargetMotion {
   float strike_speed = 0.0f;
 };
 
-constexpr float kBallDiameter = 0.22f;
-constexpr float kSpanMargin = 0.8f;  // m: a launch point stays this far inside an obstacle's ends (launch_point): the
-// crawl's hands reach 0.4 m to the side, and a crossing up to 10 degrees off square drifts 0.3 m more
+constexpr float kBallDiameter = 0.22f;  // m: a football; the kick's reach is for this size
+// m: a launch point stays this far inside an obstacle's ends (launch_point): the crawl's hands reach 0.4 m
+// to the side, and a crossing up to 10 degrees off square drifts 0.3 m more.
+constexpr float kSpanMargin = 0.8f;
 // m between two characters' roots on the floor, at least: two trunks, the arms swinging beside them and
 // the feet of a stride.
-constexpr float kPersonalSpace = 0.75f;  // m: a football; the kick's reach is for this size
+constexpr float kPersonalSpace = 0.75f;
+// m between the roots of two characters facing each other squarely: their guards' lead hands stay apart.
+constexpr float kFacingSpace = 1.0f;
+// m: an opponent holding short of its launch point strikes once the user has come this near to it.
+constexpr float kOpponentStrikeSlack = 0.1f;
+// s after a punch lands before its arm is back in guard (the built-in punch's recovery, 0.36 s); one
+// punched at waits for it before it counters (World::try_auto_launch).
+constexpr float kStrikeRecovery = 0.35f;
+// m: nearer than this to its launch point at another character, a character makes for that character.
+constexpr float kLaunchPointNear = 0.5f;
+// m: a defeated opponent steps this far aside, out of the user's way (World::defeat).
+constexpr float kStepAside = 2.0f;
 
 // Everything a world needs that does not depend on the scenario: the motion set, its graph, the
 // synthesizer, the target motions and the controller's policy. Shared by worlds (and threads) read-only.
@@ -200,7 +212,10 @@ struct WorldCharacter {
   int motion = -1;            // the policy core motion chosen last
   int clip = -1;              // the clip playing now
   bool in_target = false;     // playing a target motion
-  TargetAction playing = TargetAction::Kick;  // which, when in_target
+  TargetAction playing = TargetAction::Kick;  // which, when in_target (the last one played, after)
+  // The character a punch's striking arm is out at (-1: none): from the launch until the arm is back in
+  // guard, at the clip's end or at the end of the cross-fade out of a clip left early (kept preparation).
+  int arm_out_at = -1;
 
   bool has_source = false;
   glm::vec2 source{0.0f};               // the source point the controller sees (the launch point)
@@ -350,6 +365,11 @@ class World {
   bool start_target(int index, TargetAction action, int object, int target_character, bool automatic);
   void try_auto_launch(int index);
   void update_goal(int index);
+  void defeat(int opponent, int striker);
+  // `striker` plays a strike at `target` that has not landed, or landed less than kStrikeRecovery ago.
+  bool striking_at(int striker, int target) const;
+  static glm::vec2 character_goal(const WorldCharacter& c);
+  std::optional<glm::vec2> steering_goal(const WorldCharacter& c) const;
   void update_arrival(int index);
   void update_balance(int index);
   glm::vec2 launch_point(int index, glm::vec2 object, float object_heading, bool across, TargetAction action,

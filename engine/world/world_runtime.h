@@ -38,7 +38,8 @@ struct World::Runtime {
   }
   int target_object = -1, target_character = -1;
   bool struck = false;           // the strike landed (TargetMotion::strike_frame, else T_t)
-  // Aiming a strike (World::aim_strike): the root is slid by `aim` in all between the launch and the strike
+  float struck_time = 0.0f;      // world time it landed
+  // Aiming a strike or an obstacle clip (World::start_target): the root is slid by `aim` in all between the launch and the strike
   // frame, a smooth share per tick.
   glm::vec2 aim{0.0f};
   float aim_seconds = 0.0f, aim_elapsed = 0.0f;

@@ -199,3 +199,39 @@ TEST_CASE("characters keep their distance: roots never closer than the personal 
   CHECK(r.summary.character_frames == 0);
   CHECK(r.summary.min_character >= -clearance_metric::kCharacterTolerance);
 }
+
+TEST_CASE("a fight: opponents strike only from their reach, and step aside once defeated") {
+  World world(shipped("fight"), clearance_test_assets());
+  world.set_auto(true);
+  const size_t n = world.characters().size();
+  std::vector<float> defeated_at(n, -1.0f);
+  std::vector<glm::vec2> defeated_where(n), where_after(n);
+  world.run_until_done(40.0f, 1.0f, [&](const World& w) {
+    for (size_t i = 0; i < n; ++i) {
+      const WorldCharacter& c = w.characters()[i];
+      if (c.defeated && defeated_at[i] < 0.0f) {
+        defeated_at[i] = w.time();
+        defeated_where[i] = c.position;
+      }
+      if (defeated_at[i] >= 0.0f && w.time() - defeated_at[i] <= 6.0f) where_after[i] = c.position;
+    }
+  });
+  REQUIRE(world.goal_reached());
+  int opponent_launches = 0;
+  for (const LaunchRecord& r : world.launches()) {
+    if (world.characters()[static_cast<size_t>(r.character)].control != Control::Opponent) continue;
+    ++opponent_launches;
+    INFO("opponent " << r.character << " at " << r.time << " s, " << r.miss << " m short of its launch point");
+    CHECK(r.miss <= kOpponentStrikeSlack + 1e-3f);
+  }
+  CHECK(opponent_launches >= 1);
+  int defeated = 0;
+  for (size_t i = 0; i < n; ++i) {
+    if (world.characters()[i].control != Control::Opponent) continue;
+    REQUIRE(defeated_at[i] >= 0.0f);
+    ++defeated;
+    // Within 6 s of its defeat it has walked most of its way aside.
+    CHECK(glm::length(where_after[i] - defeated_where[i]) >= 0.75f * kStepAside);
+  }
+  CHECK(defeated == 2);
+}
