@@ -393,7 +393,6 @@ Evaluation EvaluationRecorder::finish(const World& world, EvaluationMethod metho
   e.clearance = clearance_.summary;
   e.synthesis_us_per_frame = synthesis_calls_ > 0 ? 1000.0 * synthesis_ms_ / static_cast<double>(synthesis_calls_) : kNaN;
   const float dt = world.params().runtime.fixed_dt;
-  const int fade_ticks = static_cast<int>(std::lround(world.params().graph.blend_s / dt));
   const int window_ticks = static_cast<int>(std::lround(metric::kDecelWindow / dt));
   for (size_t i = 0; i < tracks_.size(); ++i) {
     const Track& t = tracks_[i];
@@ -420,7 +419,9 @@ Evaluation EvaluationRecorder::finish(const World& world, EvaluationMethod metho
       l.target_character = r.target_character;
       l.alpha_at_launch = r.alpha_at_launch;
       l.prep_lead_s = preparation_lead(t.alpha, L, earliest, dt);
-      l.peak_decel_mps2 = peak_deceleration(t.positions, dt, L - window_ticks, L + fade_ticks);
+      // Up to the hand-over: the last span before the launch against the first of the clip (the clip plays
+      // from the tick after L). Later falls are the recorded clip's own, the same for every method.
+      l.peak_decel_mps2 = peak_deceleration(t.positions, dt, L - window_ticks, L + span_ticks(dt));
       l.speed_at_launch_mps = speed_at(t.positions, dt, L);
       const size_t record = static_cast<size_t>(t.launch_records[k]) - first_launch_record_;
       l.min_clearance = record < clearance_.launches.size() ? clearance_.launches[record].min_clearance : kNaN;

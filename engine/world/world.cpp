@@ -441,9 +441,11 @@ void World::steer_tightly(int index) {
   TightTurn turn;
   // Squaring up to the obstacle arrived at comes first (steering.h).
   if (max_rate > 0.0f && c.has_source && c.source_character >= 0 && rt.controller->arrived()) {
-    // Two characters arrived at striking distance turn to keep facing each other.
+    // Two characters arrived at striking distance turn to keep facing each other, once more than
+    // kFacingSlack off (the other sways and steps; the punch is turned to it at its launch, start_target).
     const glm::vec2 d = c.source_object_position - c.position;
-    if (glm::length(d) > 1e-3f) turn.rate = squaring_rate(c.heading, std::atan2(d.x, d.y), max_rate);
+    if (glm::length(d) > 1e-3f && std::fabs(std::remainder(std::atan2(d.x, d.y) - c.heading, 2.0f * kPi)) > kFacingSlack)
+      turn.rate = squaring_rate(c.heading, std::atan2(d.x, d.y), max_rate);
   }
   if (max_rate > 0.0f && c.control == Control::User && c.has_source && c.source_object >= 0 && rt.controller->arrived()) {
     const WorldObject& o = objects_[static_cast<size_t>(c.source_object)];

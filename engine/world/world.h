@@ -133,6 +133,8 @@ constexpr float kOpponentStrikeSlack = 0.1f;
 // s after a punch lands before its arm is back in guard (the built-in punch's recovery, 0.36 s); one
 // punched at waits for it before it counters (World::try_auto_launch).
 constexpr float kStrikeRecovery = 0.35f;
+// rad: a character arrived at another keeps facing it within this (World::steer_tightly).
+constexpr float kFacingSlack = 15.0f * 3.14159265f / 180.0f;
 // m: nearer than this to its launch point at another character, a character makes for that character.
 constexpr float kLaunchPointNear = 0.5f;
 // m: a defeated opponent steps this far aside, out of the user's way (World::defeat).

@@ -235,3 +235,22 @@ TEST_CASE("a fight: opponents strike only from their reach, and step aside once 
   }
   CHECK(defeated == 2);
 }
+
+TEST_CASE("the fight: ours decelerates at most half as hard as naive into every punch, and the bodies' nearest is reported") {
+  const Scenario s = shipped("fight");
+  const EvaluationReference reference(*clearance_test_assets()->set);
+  const Evaluation ours = evaluate_scenario(s, clearance_test_assets(), reference, EvaluationMethod::Ours, 40.0f);
+  const Evaluation naive = evaluate_scenario(s, clearance_test_assets(), reference, EvaluationMethod::Naive, 40.0f);
+  const std::vector<LaunchEvaluation>& o = ours.characters[0].launches;
+  const std::vector<LaunchEvaluation>& n = naive.characters[0].launches;
+  REQUIRE(o.size() == 2);
+  REQUIRE(n.size() == 2);
+  for (size_t k = 0; k < o.size(); ++k) {
+    CAPTURE(k);
+    CHECK(n[k].peak_decel_mps2 > 2.0f);  // naive walks in at full speed and stops at the hand-over
+    CHECK(o[k].peak_decel_mps2 <= 0.5f * n[k].peak_decel_mps2);
+  }
+  CHECK(std::isfinite(ours.clearance.min_character));
+  CHECK(ours.clearance.min_character >= -clearance_metric::kCharacterTolerance);
+  CHECK(ours.clearance.min_character < 0.5f);  // the fight is close: the nearest bodies come within 0.5 m
+}
