@@ -186,6 +186,10 @@ struct RuntimeParams {
   // leave the same time to prepare: training's sources stand still, so the policy reads distance as time
   // at the character's own pace (engine/world/world.h).
   bool anticipate_closing = true;
+  // Bodies kept out of obstacles: a body that has gone into an obstacle it is not crossing with a target
+  // motion (a leg swung into a hurdle's board by a turn just after it, a head walked into a rail) is set
+  // back out along the obstacle's crossing direction (engine/world/bodies.cpp). Off: bodies go through.
+  bool keep_clear = true;
 };
 
 struct Params {

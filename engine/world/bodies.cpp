@@ -5,13 +5,16 @@
 
 #include "engine/motion/kinematics.h"
 #include "engine/synthesis/foot_ik.h"
+#include "engine/world/clearance.h"
 #include "engine/world/floor.h"
 #include "engine/world/world.h"
 #include "engine/world/world_runtime.h"
 
 namespace prep {
 
+using floor_plane::floor_xz;
 using floor_plane::forward_of;
+using floor_plane::is_across;
 
 // Characters keep their distance: two whose roots come closer than kPersonalSpace on the floor are set
 // apart along the line between them, each by the share of the closing that is its own (the one walking in
@@ -62,6 +65,48 @@ void World::defeat(int opponent, int striker) {
   const glm::vec2 left = floor_plane::left_of(s.heading);
   const glm::vec2 side = glm::dot(o.position - s.position, left) >= 0.0f ? left : -left;
   o.goal = {o.position + kStepAside * glm::normalize(side + 0.5f * away)};
+}
+
+// Bodies never pass through obstacles. A body that has gone into an obstacle's solids (a trailing leg swung
+// into a hurdle's board by a turn just after the jump, a head walked into a rail) is set back out along the
+// obstacle's crossing direction, to the root's side, by the depth: as a wall stops a body, not as a
+// correction of the motion. The obstacle a target clip is crossing is left to the clip's fit
+// (obstacle_fit.h); balls are kicked, not walked around.
+void World::keep_clear_of_obstacles(int index) {
+  if (!params_.runtime.keep_clear) return;
+  WorldCharacter& c = characters_[static_cast<size_t>(index)];
+  Runtime& rt = *runtime_[static_cast<size_t>(index)];
+  constexpr float kBodyReach = 1.6f;  // m: no capsule is farther than this from the root on the floor
+  bool placed = false;
+  glm::vec2 push(0.0f);
+  for (size_t k = 0; k < objects_.size(); ++k) {
+    const WorldObject& o = objects_[k];
+    if (!is_across(o.spec.type) || (c.in_target && static_cast<int>(k) == rt.target_object)) continue;
+    const glm::vec2 at = floor_xz(o.position);
+    if (glm::length(at - c.position) > 0.5f * glm::length(glm::vec2(o.spec.size.x, o.spec.size.z)) + kHurdleFootLength + kBodyReach)
+      continue;
+    if (!placed) {
+      const MotionSet& set = *assets_->set;
+      forward_kinematics(*set.skeleton, c.pose, rt.positions, &rt.rotations);
+      volumes_->place(rt.positions, rt.rotations, rt.capsules);
+      placed = true;
+    }
+    glm::vec2 n = forward_of(o.spec.heading);
+    if (glm::dot(c.position - at, n) < 0.0f) n = -n;
+    // The depth is the nearest way out, which may be up (a foot on the board's top): a step along n by it
+    // may leave the body in; a few steps finish the way out.
+    for (int step = 0; step < 4; ++step) {
+      const glm::vec3 moved(push.x, 0.0f, push.y);
+      float depth = 0.0f;
+      for (const PlacedCapsule& capsule : rt.capsules) {
+        const PlacedCapsule shifted{capsule.a + moved, capsule.b + moved, capsule.radius};
+        for (const ObjectSolid& s : solids_[k]) depth = std::max(depth, -capsule_solid_distance(shifted, s, at, o.spec.heading));
+      }
+      if (depth <= 0.0f) break;
+      push += (depth + kClearSkin) * n;
+    }
+  }
+  displace(index, push);
 }
 
 void World::displace(int index, glm::vec2 offset) {

@@ -90,16 +90,11 @@ float segment_segment_distance(glm::vec3 p1, glm::vec3 q1, glm::vec3 p2, glm::ve
   return glm::length(p1 + s * d1 - (p2 + t * d2));
 }
 
-namespace {
-
-// The signed gap between a placed capsule and one solid of an object (positioned at `at`, turned `heading`).
 float capsule_solid_distance(const PlacedCapsule& pc, const ObjectSolid& s, glm::vec2 at, float heading) {
   const glm::vec3 a = to_object_frame(pc.a, at, heading), b = to_object_frame(pc.b, at, heading);
   if (s.sphere) return glm::length(closest_on_segment(s.centre, a, b) - s.centre) - 0.5f * s.extents.x - pc.radius;
   return segment_box_distance(a, b, s.centre, 0.5f * s.extents) - pc.radius;
 }
-
-}  // namespace
 
 ClearanceMeter::ClearanceMeter(const Skeleton& skeleton) : volumes_(skeleton) {}
 

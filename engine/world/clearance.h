@@ -50,6 +50,9 @@ struct CharacterClearance {
 // Signed distances of the primitives (exposed for the tests).
 float segment_box_distance(glm::vec3 a, glm::vec3 b, glm::vec3 centre, glm::vec3 half_extents);  // to the box's surface
 float segment_segment_distance(glm::vec3 a0, glm::vec3 a1, glm::vec3 b0, glm::vec3 b1);
+// The signed gap between a placed capsule and one solid of an object standing at `at` on the floor, turned
+// `heading` (radians).
+float capsule_solid_distance(const PlacedCapsule& capsule, const ObjectSolid& solid, glm::vec2 at, float heading);
 
 class ClearanceMeter {
  public:

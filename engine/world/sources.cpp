@@ -62,7 +62,11 @@ glm::vec2 World::launch_point(int index, glm::vec2 object, float object_heading,
     const glm::vec2 along = left_of(object_heading);
     float lateral = glm::dot(c.position - object, along);
     if (half_width > kSpanMargin) lateral = std::clamp(lateral, kSpanMargin - half_width, half_width - kSpanMargin);
-    return object + lateral * along - t.reach * n;
+    // Already nearer to the obstacle than the clip's reach (out of the previous obstacle's clip), the
+    // character is past its launch point: the point is where it stands, so that it goes on to the
+    // obstacle (and enters the clip late) rather than turning back through what it has just crossed.
+    const float before = std::clamp(glm::dot(object - c.position, n), 0.0f, t.reach);
+    return object + lateral * along - before * n;
   }
   const glm::vec2 d = object - c.position;
   const float len = glm::length(d);
@@ -145,6 +149,11 @@ void World::choose_source(int index) {
         const std::optional<float> cross =
             c.goal.empty() ? std::nullopt : crossing_lateral(c.position, c.goal.front(), p, o.spec.heading);
         if (!cross || std::fabs(*cross) > 0.5f * o.spec.size.x + kBesideEnd) continue;
+      } else if (!c.goal.empty()) {
+        // In front of it, but the goal (a waypoint to visit first) lies on this side and no nearer to it
+        // than the character: the way there leads away from it. Crossed now, it would be crossed back.
+        const float goal_side = glm::dot(c.goal.front() - p, n), own_side = glm::dot(c.position - p, n);
+        if (goal_side * own_side > 0.0f && std::fabs(goal_side) >= std::fabs(own_side)) continue;
       }
       distance = std::fabs(glm::dot(d, n));
     } else {

@@ -59,6 +59,7 @@ World::World(const Scenario& scenario, std::shared_ptr<const WorldAssets> assets
   if (scenario_.user() < 0) throw std::invalid_argument("world: the scenario has no user character");
   arrival_ = std::make_unique<ArrivalModel>(policy_->table, policy_->quantization.alpha_step, params_.runtime);
   walking_turn_rate_ = fastest_level0_turn(policy_->table);
+  volumes_ = std::make_unique<BodyVolumes>(*assets_->set->skeleton);
 
   auto add_character = [&](glm::vec2 position, float heading, Control control, TargetAction met_with, int object) {
     WorldCharacter c;
@@ -91,6 +92,7 @@ World::World(const Scenario& scenario, std::shared_ptr<const WorldAssets> assets
       add_character(o.position, o.heading, Control::Opponent, o.action, static_cast<int>(i));
     }
     objects_.push_back(w);
+    solids_.push_back(object_solids(o.type, o.size));
     // An obstacle no clip of the set can pass (obstacle_fit.h) is refused here, named.
     const TargetMotion& t = assets_->target(o.action);
     if (is_across(o.type) && t.clip >= 0) {
@@ -130,6 +132,7 @@ void World::set_policy(std::shared_ptr<const Policy> policy) {
   policy_ = std::move(policy);
   arrival_ = std::make_unique<ArrivalModel>(policy_->table, policy_->quantization.alpha_step, params_.runtime);
   walking_turn_rate_ = fastest_level0_turn(policy_->table);
+  volumes_ = std::make_unique<BodyVolumes>(*assets_->set->skeleton);
   for (size_t i = 0; i < runtime_.size(); ++i) {
     const int motion = runtime_[i]->controller->motion(), level = runtime_[i]->controller->alpha_level();
     runtime_[i]->controller = std::make_unique<Controller>(policy_, params_);
@@ -178,6 +181,7 @@ void World::step() {
   }
   for (int i = 0; i < static_cast<int>(characters_.size()); ++i) step_character(i);
   keep_apart();
+  for (int i = 0; i < static_cast<int>(characters_.size()); ++i) keep_clear_of_obstacles(i);
   alpha_history_.push_back({time_, characters_[static_cast<size_t>(user_)].alpha});
   if (static_cast<int>(alpha_history_.size()) > kAlphaHistory) alpha_history_.erase(alpha_history_.begin());
   stage_times_.total_ms = ms_between(step_start, StageClock::now());

@@ -84,6 +84,7 @@
 #include "engine/motion/motion_set.h"
 #include "engine/motion/support_polygon.h"
 #include "engine/synthesis/synthesizer.h"
+#include "engine/world/object_solids.h"
 #include "engine/world/obstacle_fit.h"
 #include "engine/world/scenario.h"
 
@@ -135,6 +136,8 @@ constexpr float kOpponentStrikeSlack = 0.1f;
 constexpr float kStrikeRecovery = 0.35f;
 // rad: a character arrived at another keeps facing it within this (World::steer_tightly).
 constexpr float kFacingSlack = 15.0f * 3.14159265f / 180.0f;
+// m: a body set out of an obstacle (World::keep_clear_of_obstacles) is left this far clear of it.
+constexpr float kClearSkin = 0.005f;
 // m: nearer than this to its launch point at another character, a character makes for that character.
 constexpr float kLaunchPointNear = 0.5f;
 // m: a defeated opponent steps this far aside, out of the user's way (World::defeat).
@@ -392,6 +395,7 @@ class World {
   void steer_tightly(int index);
   void fit_pose(int index, Pose& pose);
   void keep_apart();
+  void keep_clear_of_obstacles(int index);
   void displace(int index, glm::vec2 offset);
 
   Scenario scenario_;
@@ -407,6 +411,8 @@ class World {
   OpponentRules rules_;
   std::vector<WorldCharacter> characters_;
   std::vector<WorldObject> objects_;
+  std::vector<std::vector<ObjectSolid>> solids_;  // per object, in its own frame (object_solids.h)
+  std::unique_ptr<BodyVolumes> volumes_;           // the bodies' capsules (keep_clear_of_obstacles)
   std::vector<std::unique_ptr<Runtime>> runtime_;
   std::vector<LaunchRecord> launches_;
   std::vector<glm::vec2> alpha_history_;

@@ -58,6 +58,7 @@ struct World::Runtime {
   bool beside = false;           // beside the span's launch part (Approach): no arrival yet
   std::vector<glm::vec3> positions, centroids;
   std::vector<glm::quat> rotations;
+  std::vector<PlacedCapsule> capsules;  // the body this frame (World::keep_clear_of_obstacles)
 };
 
 }  // namespace prep

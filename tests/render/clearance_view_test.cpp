@@ -172,7 +172,9 @@ TEST_CASE("demo: the clearance view (key O) draws the user's capsules that are i
   options.cache_dir = test::tmp_dir() + "/policy-cache";  // shared with the other demo tests
   options.background = false;
   demo::WorldSession session(options);
-  session.open(beam_through_body_scenario());
+  Params through;  // a world that lets the body into the beam, to be seen
+  through.runtime.keep_clear = false;
+  session.open(beam_through_body_scenario(), through);
   render::OsMesaContext context(1280, 720);
   demo::DemoApp app(context, session, nullptr);
   app.view.show_balance = false;  // its COM marker outside the support polygon is red too

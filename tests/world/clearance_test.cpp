@@ -254,3 +254,39 @@ TEST_CASE("the fight: ours decelerates at most half as hard as naive into every 
   CHECK(ours.clearance.min_character >= -clearance_metric::kCharacterTolerance);
   CHECK(ours.clearance.min_character < 0.5f);  // the fight is close: the nearest bodies come within 0.5 m
 }
+
+TEST_CASE("a body that has gone into an obstacle it is not crossing is set back out of it, to its own side") {
+  // A hurdle just ahead of the standing character, walked into (no auto launch, no jump): the body stops
+  // at the board instead of passing through; with keep_clear off it walks through.
+  Scenario s = shipped("obstacles");
+  s.auto_launch = false;
+  s.objects.resize(1);
+  s.objects[0].type = ObjectType::Hurdle;
+  s.objects[0].action = TargetAction::Jump;
+  s.objects[0].position = {0.0f, 1.0f};
+  s.objects[0].heading = 0.0f;
+  s.objects[0].size = {4.0f, 0.45f, 0.1f};
+  s.goal = {{0.0f, 6.0f}};
+  auto walk_into = [&](bool keep_clear) {
+    Params p = clearance_test_assets()->params;
+    p.runtime.keep_clear = keep_clear;
+    World world(s, clearance_test_assets());
+    world.set_params(p);
+    world.set_preparation(false);  // walks on at full pace, never launching
+    ClearanceMeter meter(*clearance_test_assets()->set->skeleton);
+    float deepest = 1e9f, farthest = -1e9f;
+    for (int k = 0; k < 8 * 60; ++k) {
+      world.step();
+      meter.measure(world);
+      deepest = std::min(deepest, meter.result()[0].object.distance);
+      farthest = std::max(farthest, world.characters()[0].position.y);
+    }
+    return std::make_pair(deepest, farthest);
+  };
+  const auto [kept_deepest, kept_farthest] = walk_into(true);
+  CHECK(kept_deepest >= -clearance_metric::kObjectTolerance);
+  CHECK(kept_farthest < 1.0f);  // the root never got past the board
+  const auto [through_deepest, through_farthest] = walk_into(false);
+  CHECK(through_deepest < -0.05f);
+  CHECK(through_farthest > 2.0f);
+}
