@@ -30,11 +30,12 @@ void World::keep_apart() {
       const float distance = glm::length(d);
       if (distance >= kFacingSpace) continue;
       const glm::vec2 dir = distance > 1e-4f ? d / distance : forward_of(a.heading);
-      // Two facing each other hold their arms out toward each other (a guard, a fighting stance turned side
-      // on, the lead hands near the middle): they keep farther apart, the more squarely they face.
-      const float facing = std::clamp(glm::dot(forward_of(a.heading), dir), 0.0f, 1.0f) *
+      // A character's arms reach farther in front of it than to its sides or back (a guard, a fighting
+      // stance turned side on, arms swinging as it walks): each one facing the other adds its half of the
+      // extra room, so two squarely facing each other keep kFacingSpace apart.
+      const float facing = std::clamp(glm::dot(forward_of(a.heading), dir), 0.0f, 1.0f) +
                            std::clamp(-glm::dot(forward_of(b.heading), dir), 0.0f, 1.0f);
-      const float space = kPersonalSpace + (kFacingSpace - kPersonalSpace) * facing;
+      const float space = kPersonalSpace + 0.5f * (kFacingSpace - kPersonalSpace) * facing;
       if (distance >= space) continue;
       const float va = std::max(0.0f, glm::dot(runtime_[i]->velocity, dir));
       const float vb = std::max(0.0f, -glm::dot(runtime_[j]->velocity, dir));
@@ -71,7 +72,7 @@ void World::defeat(int opponent, int striker) {
 // into a hurdle's board by a turn just after the jump, a head walked into a rail) is set back out along the
 // obstacle's crossing direction, to the root's side, by the depth: as a wall stops a body, not as a
 // correction of the motion. The obstacle a target clip is crossing is left to the clip's fit
-// (obstacle_fit.h); balls are kicked, not walked around.
+// (obstacle_fit.h) once the launch's cross-fade is over; balls are kicked, not walked around.
 void World::keep_clear_of_obstacles(int index) {
   if (!params_.runtime.keep_clear) return;
   WorldCharacter& c = characters_[static_cast<size_t>(index)];
@@ -81,7 +82,11 @@ void World::keep_clear_of_obstacles(int index) {
   glm::vec2 push(0.0f);
   for (size_t k = 0; k < objects_.size(); ++k) {
     const WorldObject& o = objects_[k];
-    if (!is_across(o.spec.type) || (c.in_target && static_cast<int>(k) == rt.target_object)) continue;
+    // The clip's own obstacle is the fit's, but for a rail while the launch's cross-fade lasts: the body is
+    // then part the pose it came in with (upright, out of a walk) and is held back until it is low enough.
+    // A hurdle is left to the jump throughout: held back, its run-up would never take off.
+    const bool own = c.in_target && static_cast<int>(k) == rt.target_object;
+    if (!is_across(o.spec.type) || (own && (rt.fade_left <= 0.0f || o.spec.type == ObjectType::Hurdle))) continue;
     const glm::vec2 at = floor_xz(o.position);
     if (glm::length(at - c.position) > 0.5f * glm::length(glm::vec2(o.spec.size.x, o.spec.size.z)) + kHurdleFootLength + kBodyReach)
       continue;

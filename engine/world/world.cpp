@@ -222,7 +222,8 @@ void World::control(int index) {
     // motion starts at once, entered at the frame of its loop that best matches the frame playing (the
     // graph's point-cloud distance) and cross-faded over GraphParams::blend_s. Loops and the returns from
     // target motions still follow graph edges.
-    const bool stay = (c.control == Control::User && c.reached_goal) || (c.control == Control::Opponent && c.defeated && c.goal.empty());
+    const bool stay = (c.control == Control::User && c.reached_goal) ||
+                      (c.control == Control::Opponent && c.defeated && (c.goal.empty() || turning_to_step_aside(c)));
     const int wanted = stay ? assets_->idle_node : assets_->core_nodes[static_cast<size_t>(d.motion)];
     if (wanted != rt.stream.node()) {
       rt.begin_fade(c.pose, params_.graph.blend_s);
@@ -386,6 +387,14 @@ glm::vec2 World::character_goal(const WorldCharacter& c) {
   return glm::length(c.source - c.position) > kLaunchPointNear ? c.source : c.source_object_position;
 }
 
+// A defeated opponent with its way aside still more than kStepAsideTurn off its facing: it turns on the
+// spot first. Walked off at once, the walking turn would carry it a stride into the one who hit it.
+bool World::turning_to_step_aside(const WorldCharacter& c) {
+  if (c.control != Control::Opponent || !c.defeated || c.goal.empty()) return false;
+  const glm::vec2 d = c.goal.front() - c.position;
+  return std::fabs(std::remainder(std::atan2(d.x, d.y) - c.heading, 2.0f * kPi)) > kStepAsideTurn;
+}
+
 // Where the character makes for (none: it stays): the controller's goal, and the tight turns' (steer_tightly).
 std::optional<glm::vec2> World::steering_goal(const WorldCharacter& c) const {
   // An opponent makes for the user, or steps aside once defeated (defeat).
@@ -427,6 +436,15 @@ bool World::release_for_next_source(int index) {
   const auto walk = std::find(assets_->core_nodes.begin(), assets_->core_nodes.end(), walk_node);
   const int motion = walk == assets_->core_nodes.end() ? rt.controller->motion() : static_cast<int>(walk - assets_->core_nodes.begin());
   c.in_target = false;
+  // The next obstacle so near that its launch point is already behind (two bars close together): its clip
+  // is entered now, at the frame that has come as far, rather than rising into the walk in between.
+  const Approach next = approach(index);
+  if (next.to_launch <= 0.0f && next.ahead && c.source_object >= 0 && is_across(objects_[static_cast<size_t>(c.source_object)].spec.type) &&
+      (c.control != Control::User || auto_launch_)) {
+    c.to_launch = next.to_launch;
+    if (start_target(index, c.prepared_for, c.source_object, -1, true)) return true;
+    c.in_target = false;
+  }
   rt.controller->reset(motion, kept_level());
   rt.next_decision = time_;
   rt.begin_fade(c.pose, kKeptFadeSeconds);
@@ -444,6 +462,11 @@ void World::steer_tightly(int index) {
   const float max_rate = params_.runtime.tight_turn_deg_per_s * kPi / 180.0f;
   TightTurn turn;
   // Squaring up to the obstacle arrived at comes first (steering.h).
+  const bool stepping_aside = max_rate > 0.0f && turning_to_step_aside(c);
+  if (stepping_aside) {  // a defeated opponent turns where it stands before it walks off (defeat)
+    const glm::vec2 d = c.goal.front() - c.position;
+    turn.rate = squaring_rate(c.heading, std::atan2(d.x, d.y), max_rate);
+  }
   if (max_rate > 0.0f && c.has_source && c.source_character >= 0 && rt.controller->arrived()) {
     // Two characters arrived at striking distance turn to keep facing each other, once more than
     // kFacingSlack off (the other sways and steps; the punch is turned to it at its launch, start_target).
@@ -486,7 +509,7 @@ void World::steer_tightly(int index) {
     // Single support: pivot on the stance foot. Otherwise, arrived (standing, squaring
     // up): turn on the spot about the root, at a third of the rate, a shuffle of the feet; otherwise a
     // character standing a little off square would never turn and never launch.
-    if (left != right || rt.controller->arrived()) {
+    if (left != right || rt.controller->arrived() || stepping_aside) {
       const MotionSet& set = *assets_->set;
       glm::vec2 pivot = floor_xz(root) + move.offset;
       if (left != right) {

@@ -126,7 +126,7 @@ constexpr float kBallDiameter = 0.22f;  // m: a football; the kick's reach is fo
 constexpr float kSpanMargin = 0.8f;
 // m between two characters' roots on the floor, at least: two trunks, the arms swinging beside them and
 // the feet of a stride.
-constexpr float kPersonalSpace = 0.75f;
+constexpr float kPersonalSpace = 0.8f;
 // m between the roots of two characters facing each other squarely: their guards' lead hands stay apart.
 constexpr float kFacingSpace = 1.0f;
 // m: an opponent holding short of its launch point strikes once the user has come this near to it.
@@ -142,6 +142,8 @@ constexpr float kClearSkin = 0.005f;
 constexpr float kLaunchPointNear = 0.5f;
 // m: a defeated opponent steps this far aside, out of the user's way (World::defeat).
 constexpr float kStepAside = 2.0f;
+// rad: it turns where it stands until its way aside is within this of its facing (World::turning_to_step_aside).
+constexpr float kStepAsideTurn = 30.0f * 3.14159265f / 180.0f;
 
 // Everything a world needs that does not depend on the scenario: the motion set, its graph, the
 // synthesizer, the target motions and the controller's policy. Shared by worlds (and threads) read-only.
@@ -374,6 +376,7 @@ class World {
   // `striker` plays a strike at `target` that has not landed, or landed less than kStrikeRecovery ago.
   bool striking_at(int striker, int target) const;
   static glm::vec2 character_goal(const WorldCharacter& c);
+  static bool turning_to_step_aside(const WorldCharacter& c);
   std::optional<glm::vec2> steering_goal(const WorldCharacter& c) const;
   void update_arrival(int index);
   void update_balance(int index);
