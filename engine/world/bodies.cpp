@@ -2,6 +2,7 @@
 // obstacle (obstacle_fit.h), and characters kept apart.
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "engine/motion/kinematics.h"
 #include "engine/synthesis/foot_ik.h"
@@ -22,6 +23,7 @@ using floor_plane::is_across;
 // its stream, synthesis state, planted feet and balance history, so the next frame carries on from there.
 void World::keep_apart() {
   const size_t n = characters_.size();
+  std::vector<glm::vec2> shove(n, glm::vec2(0.0f));
   for (size_t i = 0; i < n; ++i)
     for (size_t j = i + 1; j < n; ++j) {
       WorldCharacter& a = characters_[i];
@@ -48,9 +50,16 @@ void World::keep_apart() {
         const float lean = glm::dot(velocity, across);
         return (lean >= 0.0f ? 1.0f : -1.0f) * across;
       };
-      displace(static_cast<int>(i), share_a * gap * (-dir + aside(runtime_[i]->velocity)));
-      displace(static_cast<int>(j), (1.0f - share_a) * gap * (dir + aside(runtime_[j]->velocity)));
+      shove[i] += share_a * gap * (-dir + aside(runtime_[i]->velocity));
+      shove[j] += (1.0f - share_a) * gap * (dir + aside(runtime_[j]->velocity));
     }
+  // At most a brisk step's pace per tick: a character pressed between two others is eased out over a few
+  // ticks rather than thrown (the pushes of both would add up to a jump).
+  const float most = kMaxShoveSpeed * params_.runtime.fixed_dt;
+  for (size_t i = 0; i < n; ++i) {
+    const float length = glm::length(shove[i]);
+    displace(static_cast<int>(i), length > most ? shove[i] * (most / length) : shove[i]);
+  }
 }
 
 // A punched opponent stops fighting and steps aside, out of the way its striker is going (to the side it
@@ -72,7 +81,7 @@ void World::defeat(int opponent, int striker) {
 // into a hurdle's board by a turn just after the jump, a head walked into a rail) is set back out along the
 // obstacle's crossing direction, to the root's side, by the depth: as a wall stops a body, not as a
 // correction of the motion. The obstacle a target clip is crossing is left to the clip's fit
-// (obstacle_fit.h) once the launch's cross-fade is over; balls are kicked, not walked around.
+// (obstacle_fit.h) once the launch's cross-fade is over; a ball is kept out of all but its kick.
 void World::keep_clear_of_obstacles(int index) {
   if (!params_.runtime.keep_clear) return;
   WorldCharacter& c = characters_[static_cast<size_t>(index)];
@@ -86,7 +95,8 @@ void World::keep_clear_of_obstacles(int index) {
     // then part the pose it came in with (upright, out of a walk) and is held back until it is low enough.
     // A hurdle is left to the jump throughout: held back, its run-up would never take off.
     const bool own = c.in_target && static_cast<int>(k) == rt.target_object;
-    if (!is_across(o.spec.type) || (own && (rt.fade_left <= 0.0f || o.spec.type == ObjectType::Hurdle))) continue;
+    const bool ball = o.spec.type == ObjectType::Ball;
+    if (!(is_across(o.spec.type) || ball) || (own && (ball || rt.fade_left <= 0.0f || o.spec.type == ObjectType::Hurdle))) continue;
     const glm::vec2 at = floor_xz(o.position);
     if (glm::length(at - c.position) > 0.5f * glm::length(glm::vec2(o.spec.size.x, o.spec.size.z)) + kHurdleFootLength + kBodyReach)
       continue;
@@ -97,6 +107,7 @@ void World::keep_clear_of_obstacles(int index) {
       placed = true;
     }
     glm::vec2 n = forward_of(o.spec.heading);
+    if (ball && glm::length(c.position - at) > 1e-4f) n = glm::normalize(c.position - at);  // away from it
     if (glm::dot(c.position - at, n) < 0.0f) n = -n;
     // The depth is the nearest way out, which may be up (a foot on the board's top): a step along n by it
     // may leave the body in; a few steps finish the way out.

@@ -129,6 +129,8 @@ constexpr float kSpanMargin = 0.8f;
 constexpr float kPersonalSpace = 0.8f;
 // m between the roots of two characters facing each other squarely: their guards' lead hands stay apart.
 constexpr float kFacingSpace = 1.0f;
+// m/s: the fastest two characters kept apart are set back (World::keep_apart).
+constexpr float kMaxShoveSpeed = 3.0f;
 // m: an opponent holding short of its launch point strikes once the user has come this near to it.
 constexpr float kOpponentStrikeSlack = 0.1f;
 // s after a punch lands before its arm is back in guard (the built-in punch's recovery, 0.36 s); one
