@@ -6,7 +6,6 @@
 #include <limits>
 
 #include "engine/control/arrival.h"
-#include "engine/synthesis/preparation_run.h"
 #include "engine/world/floor.h"
 #include "engine/world/world.h"
 #include "engine/world/world_runtime.h"
@@ -277,16 +276,6 @@ void World::update_arrival(int index) {
   if (within && !ctl.arrived()) {
     c.level_at_arrival = ctl.alpha_of_level(ctl.alpha_level());
     ctl.set_arrived(true);
-    // No decisions are taken while arrived: a turning clip chosen last would go on turning the character
-    // while the arrival squares it up (steer_tightly). It goes on with the straight walk, whose stride the
-    // forced alpha stops.
-    const int walk = find_cyclic_clip(*assets_->set, Role::Walk);
-    if (walk >= 0 && rt.stream.node() != walk && !c.in_target &&
-        std::find(assets_->core_nodes.begin(), assets_->core_nodes.end(), rt.stream.node()) != assets_->core_nodes.end()) {
-      rt.begin_fade(c.pose, params_.graph.blend_s);
-      rt.stream.switch_to(walk, c.position, c.heading);
-      rt.reseed = true;
-    }
   } else if (!within && ctl.arrived()) {
     ctl.set_arrived(false);
   }
