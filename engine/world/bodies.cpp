@@ -37,7 +37,16 @@ void World::keep_apart() {
       // extra room, so two squarely facing each other keep kFacingSpace apart.
       const float facing = std::clamp(glm::dot(forward_of(a.heading), dir), 0.0f, 1.0f) +
                            std::clamp(-glm::dot(forward_of(b.heading), dir), 0.0f, 1.0f);
-      const float space = kPersonalSpace + 0.5f * (kFacingSpace - kPersonalSpace) * facing;
+      float space = kPersonalSpace + 0.5f * (kFacingSpace - kPersonalSpace) * facing;
+      // Without preparation (the naive baseline) nothing stops a character short of its launch point, so it
+      // launches only there: one whose source is the other is let come that near. Prepared, it arrives and
+      // strikes from where it stands (update_arrival).
+      auto striking_distance = [&](const WorldCharacter& c, size_t other) {
+        return !preparation_ && c.has_source && c.source_character == static_cast<int>(other)
+                   ? glm::length(c.source_object_position - c.source) - kStrikeSlack
+                   : kFacingSpace;
+      };
+      space = std::max(std::min({space, striking_distance(a, j), striking_distance(b, i)}), kPersonalSpace);
       if (distance >= space) continue;
       const float va = std::max(0.0f, glm::dot(runtime_[i]->velocity, dir));
       const float vb = std::max(0.0f, -glm::dot(runtime_[j]->velocity, dir));

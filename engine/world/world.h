@@ -129,6 +129,9 @@ constexpr float kSpanMargin = 0.8f;
 constexpr float kPersonalSpace = 0.8f;
 // m between the roots of two characters facing each other squarely: their guards' lead hands stay apart.
 constexpr float kFacingSpace = 1.0f;
+// m: without preparation, two characters of whom one strikes at the other are kept apart at most to this
+// short of its launch point, so that it can reach it (World::keep_apart).
+constexpr float kStrikeSlack = 0.05f;
 // m/s: the fastest two characters kept apart are set back (World::keep_apart).
 constexpr float kMaxShoveSpeed = 3.0f;
 // m: an opponent holding short of its launch point strikes once the user has come this near to it.
