@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Regenerates the README's measured results (issue 9) and prints them as markdown:
-#   - the quality tables (scenario x method x metric, and the issue's acceptance checks) on the built-in
+# Regenerates the README's measured results and prints them as markdown:
+#   - the quality tables (scenario x method x metric, and the acceptance checks) on the built-in
 #     library and on the CMU motion capture, from `prep evaluate`;
 #   - the alpha-over-time plots of the three methods per scenario (assets/readme/alpha_<scenario>.png);
 #   - the training curve of the paper's configuration (assets/readme/training_curve.png), from `prep train`;

@@ -1,4 +1,4 @@
-// prep bench: the speed figures of issue 9 (engine/world/benchmark.h measures; this prints): SARSA steps per
+// prep bench: the speed figures (engine/world/benchmark.h measures; this prints): SARSA steps per
 // second, synthesis microseconds per character-frame with and without the balance optimizer (the built-in
 // library and the 43-joint daz43 set), a crowd of 1 to 4,000 characters with controller and full synthesis
 // at 60 Hz on both cores, graph build time, start-up to the first synthesized frame, peak memory.
@@ -19,7 +19,7 @@
 
 namespace {
 
-// The issue's targets on this 2-core machine.
+// The speed targets on this 2-core machine.
 constexpr double kCrowdTargetMs = 16.7;       // 1,000 characters, per frame
 constexpr int kCrowdTargetCharacters = 1000;
 constexpr double kSynthesisTargetUs = 10.0;   // per character-frame
@@ -77,7 +77,7 @@ void run(const Options& o) {
 
   j["synthesis"] = nlohmann::json::array();
   for (const auto& set : sets) {
-    if (set->name == "cmu31") continue;  // the issue asks for the built-in and the 43-joint daz43 set
+    if (set->name == "cmu31") continue;  // the built-in and the 43-joint daz43 set are the reference points
     for (bool balance : {true, false}) {
       say("synthesis " + set->name + (balance ? " with" : " without") + " balance ... ");
       const prep::SynthesisBenchmark s =

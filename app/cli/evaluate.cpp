@@ -92,7 +92,7 @@ std::string markdown_table(const std::vector<prep::Evaluation>& runs) {
   return o.str();
 }
 
-// The acceptance, per scenario, where its three methods were run: ours' peak deceleration at most
+// The acceptance checks, per scenario, where its three methods were run: ours' peak deceleration at most
 // half of naive's at every launch (matched in order), lead >= 0.5 s, skate <= 0.3 cm/frame, COM in support
 // >= 0.95, plausibility below linear's.
 std::string markdown_checks(const std::vector<prep::Evaluation>& runs) {

@@ -11,7 +11,7 @@
 
 namespace prep::demo {
 
-// Obstacle sizes of issue 3/7: bar underside 0.65 m, beam underside 1.2 m, hurdle top 0.4 m, ball 0.22 m.
+// Obstacle sizes the built-in clips were made for: bar underside 0.65 m, beam underside 1.2 m, hurdle top 0.4 m, ball 0.22 m.
 constexpr float kBarClearance = 0.65f;
 constexpr float kBeamClearance = 1.2f;
 constexpr float kHurdleHeight = 0.4f;

@@ -1,4 +1,4 @@
-// A strip of frames of one clip, side by side, for judging motion by eye (issue 3): `frames` tiles spread
+// A strip of frames of one clip, side by side, for judging motion by eye: `frames` tiles spread
 // evenly over the clip (first and last frame included), each tile_width x tile_height, all seen from the
 // same side at the same scale (clip_view.h strip_camera), the camera sliding along with the character.
 #pragma once

@@ -4,7 +4,7 @@
 // that let rendering interpolate poses between the last two ticks. The renderer reads scene(); nothing
 // here draws, and nothing that draws drives the world but through the intent calls below.
 //
-// Choices (the paper and issue 7 leave them open):
+// Choices (the paper leaves them open):
 // - Fixed step with an accumulator: each frame adds its wall time (times time_scale) and runs whole ticks
 //   of RuntimeParams::fixed_dt, at most kMaxTicksPerFrame (a slower frame's extra time is dropped: the
 //   simulation slows down rather than piling up ticks, no spiral); the rest carries over. The drawn poses are interpolated between the

@@ -21,7 +21,7 @@
 //   reports as alpha_at_launch). Not the forced 1: it is as high as the approach let it become.
 // - median_level_at_arrival: the alpha level the policy itself had chosen when the arrival began.
 // - alpha_at_1m_ratio: episodes whose alpha is at least 0.5 on the first tick within 1 m of the source:
-//   the state's alpha (Eq. 11 and 13: the level the policy plays), as issue 6 defines it.
+//   the state's alpha (Eq. 11 and 13: the level the policy plays).
 // - played_alpha_at_1m_ratio: the same with the filtered alpha synthesis uses there, which lags the level
 //   by the Gaussian filter (a level raised just before 1 m shows less); median_alpha_at_1m is its median.
 #pragma once

@@ -44,7 +44,7 @@
 // worker copies the merged rows into its own replica at the start of its next round, in parallel). So the
 // same seed and thread count give the same Q bit for bit, whatever the scheduling.
 //
-// Speed (issue 9). A training step costs about 495 instructions (callgrind, exploring starts and merge
+// Speed. A training step costs about 495 instructions (callgrind, exploring starts and merge
 // included; 780 before these changes) and 2.5 mispredicted branches (14 before):
 // the Q rows are padded to blocks of four actions with -infinity where an action is not allowed, so the
 // greedy choice is a four-wide maximum (sarsa.cpp); the goal's and the source's bearings and distances

@@ -1,4 +1,4 @@
-// Measured speed (issue 9): the figures `prep bench` prints. Each function runs one measurement and returns
+// Measured speed: the figures `prep bench` prints. Each function runs one measurement and returns
 // what it measured; nothing here asserts a target (timings on a shared machine are noisy; the figures are
 // reported, see README).
 //

@@ -1,4 +1,4 @@
-// Measured quality (issue 9): how natural a world's motion is, in numbers anyone can regenerate.
+// Measured quality: how natural a world's motion is, in numbers anyone can regenerate.
 //
 // An EvaluationRecorder watches a World tick by tick (observe() after every World::step) and measures,
 // per character and in total:
@@ -10,13 +10,13 @@
 // stride, Sec. 8) and "naive" (motion-graph concatenation without preparation: World::set_preparation(false),
 // alpha = 0 until the launch).
 //
-// Definitions, and the choices made where the issue leaves room (each is coded below in evaluation.cpp):
+// Definitions, and the choices made where the definitions leave room (each is coded below in evaluation.cpp):
 // - Synthesized frames. The pose of a character playing a target clip is the recorded clip itself, the
 //   same for every method (and a crawl's hands and knees, a jump's flight, are outside what a foot skate or
 //   a support polygon of the feet can judge). Skate, balance and plausibility are therefore measured on the
 //   frames the method makes: every frame not inside a target motion, plus the cross-fade into it (the first
 //   GraphParams::blend_s after a launch).
-// - Foot skate (the motion in-betweening / MANN measure, restricted to feet in contact as the issue asks):
+// - Foot skate (the motion in-betweening / MANN measure, restricted to feet in contact):
 //   for each foot the contact labels have down (WorldCharacter::contacts: the locomotion's labels, which
 //   synthesis keeps, Sec. 5.2), the horizontal slide since the previous frame of its point in contact (heel
 //   or toe tip; both: the one nearer its planted height), weighted by clamp(2 - 2^(h/H), 0, 1) with h its
@@ -62,7 +62,7 @@
 
 namespace prep {
 
-// The constants that define the metrics (issue 9). They are not tunables of the method: change one and the
+// The constants that define the metrics. They are not tunables of the method: change one and the
 // numbers mean something else, so they are fixed here rather than in Params.
 namespace metric {
 constexpr float kSkateHeight = 0.025f;        // m: H of the skate weight clamp(2 - 2^(h/H), 0, 1)

@@ -311,7 +311,7 @@ class World {
   void set_goal(glm::vec2 goal);
   void set_auto(bool on) { auto_launch_ = on; }
   bool auto_launch() const { return auto_launch_; }
-  // Preparation off = the naive baseline of issue 9 (motion-graph concatenation): the controller still
+  // Preparation off = the naive baseline (motion-graph concatenation): the controller still
   // picks motions, but synthesis gets alpha 0 and the characters' reported alpha is 0 until a launch.
   // The controller chooses among all its actions, as with preparation, and only the played stride is the
   // unprepared one: limited to level-0 actions it met Q values of states its training rarely reached

@@ -51,7 +51,7 @@ void check_frame_metrics(const nlohmann::json& j) {
 
 }  // namespace
 
-TEST_CASE("prep evaluate --json: one run's object in the issue's shape") {
+TEST_CASE("prep evaluate --json: one run's object in its documented shape") {
   const nlohmann::json j = nlohmann::json::parse(run_evaluate({"--scenario", kKick, "--method", "ours", "--json"}));
   REQUIRE(j.is_object());
   CHECK(j["scenario"] == "kick");

@@ -45,7 +45,7 @@ cli::RegisterInfoSection test_section({"test_section", 1000,
                                        nullptr});
 }  // namespace
 
-TEST_CASE("prep info --json describes a manifest in the issue's shape, with registered sections appended") {
+TEST_CASE("prep info --json describes a manifest in its documented shape, with registered sections appended") {
   const std::string manifest = test::repo() + "/assets/manifests/cmu31.json";
   const nlohmann::json d = nlohmann::json::parse(run("info", {"--json", "--motions", manifest}));
   CHECK(d["skeleton"]["joints"] == 31);

@@ -19,7 +19,7 @@ inline bool in_next(const MotionGraph& g, int a, int b) {
   return std::find(n.begin(), n.end(), b) != n.end();
 }
 
-// Sec. 4.1 as issue 4 states it: targets launch from walk in one step and return to locomotion; core
+// Sec. 4.1: targets launch from walk in one step and return to locomotion; core
 // nodes all reach each other.
 inline void check_hierarchy(const MotionGraph& g, int min_core) {
   const auto& nodes = g.nodes();

@@ -35,7 +35,7 @@ struct ContactReport {
 };
 
 // Contacts of `target` compared with those of `source`, and how far the target's planted points slide.
-constexpr float kPlanted = 0.005f;  // m per frame: the bound for a planted foot
+constexpr float kPlanted = 0.005f;  // m per frame: the bound for a planted foot
 // A source point counts as planted when it moves at most half that (captured feet roll and jitter; a point
 // at the bound in the source is on its way out of contact).
 constexpr float kSourcePlanted = 0.5f * kPlanted;

@@ -1,4 +1,4 @@
-// The built-in library: skeleton, roles, and on every generated clip the properties issue 3 asks for.
+// The built-in library: skeleton, roles, and on every generated clip the properties a clip must have.
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -250,7 +250,7 @@ TEST_CASE("generation is deterministic") {
   }
 }
 
-// Balance. The issue asks for the COM inside the support polygon (feet in contact) on >= 95% of the
+// Balance. The aim is the COM inside the support polygon (feet in contact) on >= 95% of the
 // frames without flight. That holds for standing (idle), but not for any real walk: in single support the
 // COM travels from behind the stance foot to ahead of it toward the next footprint (the inverted
 // pendulum). Measured with this same detector and polygon on the CMU walks in ../shared/mocap, the strict

@@ -47,7 +47,7 @@ RunSummary summarize(const PreparationRun& run, const Params& params) {
   return s;
 }
 
-// Walk -> every target motion of the set, alpha ramping 0 -> 1 over 3 s (issue 5's acceptance run).
+// Walk -> every target motion of the set, alpha ramping 0 -> 1 over 3 s (the synthesis acceptance run).
 //
 // What is asserted, for every target of the built-in library and both CMU manifests:
 //  - a heel or toe the foot IK holds moves at most 2 mm per frame (the criterion, met: 1.2 mm built-in,
@@ -56,7 +56,7 @@ RunSummary summarize(const PreparationRun& run, const Params& params) {
 //  - no body part is moved more than balance.max_part_shift by the optimizer (the trust region, balance.h);
 //  - the optimizer lowers the mean COM distance and never lowers the fraction of frames inside.
 //
-// What is NOT met, and why (measured on these runs; the test prints the figures): the issue asks that the
+// What is NOT met, and why (measured on these runs; the test prints the figures): the aim is that the
 // COM lie inside the support polygon on at least 95% of the frames with alpha >= 0.3. After optimization
 // it is 31-35% on the built-in library, 16-27% on daz43's jumps and kicks (6% with kick_10_03) and 0-69%
 // on cmu31. The frames that fail are single support (66% of the built-in runs' frames, 76% daz43's, 69%

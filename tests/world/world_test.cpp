@@ -18,7 +18,7 @@ using test::builtin_assets;
 
 Scenario scenario(const std::string& name) { return load_scenario(test::repo() + "/assets/scenarios/" + name + ".json"); }
 
-// Issue 7's acceptance: with auto on, within 30 s, every object gets the target motion it calls for, the
+// The scenarios' acceptance: with auto on, within 30 s, every object gets the target motion it calls for, the
 // user launches each at its launch point with a smoothed alpha of at least RuntimeParams::launch_alpha
 // (0.9), and the goal is reached. The policy is the paper's configuration (the scenarios name no Params).
 constexpr float kRunSeconds = 30.0f;
