@@ -1,5 +1,6 @@
 // Bodies kept clear of what they meet (clearance.h measures it): an obstacle clip's pose fitted to its
-// obstacle (obstacle_fit.h), and characters kept apart.
+// obstacle (obstacle_fit.h), bodies set back out of obstacles they are not crossing, characters kept apart,
+// and a defeated opponent stepping out of the way.
 #include <algorithm>
 #include <cmath>
 #include <vector>

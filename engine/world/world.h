@@ -50,8 +50,11 @@
 //   turns the character; one standing still off square launches, the rest of the turn in the cross-fade),
 //   and the clip is slid onto the obstacle (short of, past or beside its launch point) before the body
 //   reaches it, then fitted to its height (obstacle_fit.h); a kick's wind-up is slid onto the ball; an
-//   obstacle the way to the goal crosses near its end is a source, walked along to; opponents hold at
-//   striking distance; roots stay kPersonalSpace apart (bodies.cpp).
+//   obstacle the way to the goal crosses near its end is a source, walked along to; a body that gets into
+//   an obstacle anyway is set back out of it (RuntimeParams::keep_clear). Opponents hold short of striking
+//   distance and strike once the user is within their reach; one struck at counters after the strike
+//   (striking_at); a defeated one steps aside; roots stay kPersonalSpace apart, kFacingSpace facing
+//   (bodies.cpp).
 // - No source: the controller is shown one 100 m behind the character, a source it walks away from and
 //   never reaches (beyond the last distance bin, behind), the state in which training learned that
 //   nothing calls for preparation. (One 100 m ahead would share its state with every source beyond the
