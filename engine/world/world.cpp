@@ -274,6 +274,12 @@ bool World::start_target(int index, TargetAction action, int object, int target_
   // posture by the time it reaches the obstacle.
   const int t_t = assets_->set->clips[static_cast<size_t>(t.clip)].target_frame;
   rt.begin_fade(c.pose, entry == t.reference_frame ? params_.graph.blend_s : entry > t_t ? kLateFadeSeconds : kKeptFadeSeconds);
+  // A strike is in the clip's own pose when it lands: a longer fade still under way (kept preparation's,
+  // out of the previous clip) would leave the kicking leg short of the ball.
+  if (t.strike_frame > entry) {
+    const float to_strike = static_cast<float>(t.strike_frame - entry) / assets_->set->clips[static_cast<size_t>(t.clip)].clip.fps;
+    rt.fade_total = rt.fade_left = std::min(rt.fade_left, to_strike);
+  }
   // An obstacle is crossed square and a ball kicked straight: the arrival turns the character toward it
   // (steer_tightly), and the clip starts facing the obstacle's crossing or the ball, the rest of the turn
   // taken in the launch's cross-fade. Without preparation (the naive baseline) it launches as it comes.

@@ -290,3 +290,31 @@ TEST_CASE("a body that has gone into an obstacle it is not crossing is set back 
   CHECK(through_deepest < -0.05f);
   CHECK(through_farthest > 2.0f);
 }
+
+TEST_CASE("a ball just past a bar: the kick straight out of the crawl still meets it") {
+  // Kept preparation leaves the crawl for the kick with a long cross-fade under way; the strike must come in
+  // the kick's own pose, not part-way from the crawl's.
+  Scenario s = shipped("obstacles");
+  s.objects.resize(2);
+  s.objects[0].type = ObjectType::Bar;
+  s.objects[0].action = TargetAction::Crawl;
+  s.objects[0].position = {0.0f, 5.0f};
+  s.objects[0].heading = 0.0f;
+  s.objects[0].size = {4.0f, 0.7f, 0.2f};
+  s.objects[1].type = ObjectType::Ball;
+  s.objects[1].action = TargetAction::Kick;
+  s.objects[1].position = {0.0f, 6.6f};
+  s.objects[1].heading = 0.0f;
+  s.objects[1].size = {kBallDiameter, kBallDiameter, kBallDiameter};
+  s.goal = {{0.0f, 10.0f}};
+  const ClearanceRun r = run_clearance(s);
+  int kicks = 0;
+  for (const LaunchClearance& l : r.launches) {
+    if (l.action != TargetAction::Kick) continue;
+    ++kicks;
+    REQUIRE_FALSE(std::isnan(l.strike_gap));
+    CHECK(std::fabs(l.strike_gap) <= 0.05f);
+  }
+  CHECK(kicks == 1);
+  CHECK(r.summary.object_frames == 0);
+}
