@@ -24,6 +24,7 @@ using floor_plane::floor_xz;
 using floor_plane::forward_of;
 using floor_plane::is_across;
 using floor_plane::kPi;
+using floor_plane::wrap_angle;
 
 using StageClock = std::chrono::steady_clock;
 double ms_between(StageClock::time_point a, StageClock::time_point b) {
@@ -398,7 +399,7 @@ glm::vec2 World::character_goal(const WorldCharacter& c) {
 bool World::turning_to_step_aside(const WorldCharacter& c) {
   if (c.control != Control::Opponent || !c.defeated || c.goal.empty()) return false;
   const glm::vec2 d = c.goal.front() - c.position;
-  return std::fabs(std::remainder(std::atan2(d.x, d.y) - c.heading, 2.0f * kPi)) > kStepAsideTurn;
+  return std::fabs(wrap_angle(std::atan2(d.x, d.y) - c.heading)) > kStepAsideTurn;
 }
 
 // Where the character makes for (none: it stays): the controller's goal, and the tight turns' (steer_tightly).
@@ -477,7 +478,7 @@ void World::steer_tightly(int index) {
     // Two characters arrived at striking distance turn to keep facing each other, once more than
     // kFacingSlack off (the other sways and steps; the punch is turned to it at its launch, start_target).
     const glm::vec2 d = c.source_object_position - c.position;
-    if (glm::length(d) > 1e-3f && std::fabs(std::remainder(std::atan2(d.x, d.y) - c.heading, 2.0f * kPi)) > kFacingSlack)
+    if (glm::length(d) > 1e-3f && std::fabs(wrap_angle(std::atan2(d.x, d.y) - c.heading)) > kFacingSlack)
       turn.rate = squaring_rate(c.heading, std::atan2(d.x, d.y), max_rate);
   }
   if (max_rate > 0.0f && c.control == Control::User && c.has_source && c.source_object >= 0 && rt.controller->arrived()) {

@@ -30,6 +30,16 @@ std::shared_ptr<const WorldAssets> clearance_test_assets() {
 
 Scenario shipped(const std::string& name) { return load_scenario(test::repo() + "/assets/scenarios/" + name + ".json"); }
 
+// An object of a test's own course, standing at heading 0 (crossed walking along +Z).
+ScenarioObject placed_object(ObjectType type, TargetAction action, glm::vec2 position, glm::vec3 size) {
+  ScenarioObject o;
+  o.type = type;
+  o.action = action;
+  o.position = position;
+  o.size = size;
+  return o;
+}
+
 // Runs a scenario unattended to its end and logs its clearance.
 struct ClearanceRun {
   ClearanceSummary summary;
@@ -260,12 +270,7 @@ TEST_CASE("a body that has gone into an obstacle it is not crossing is set back 
   // at the board instead of passing through; with keep_clear off it walks through.
   Scenario s = shipped("obstacles");
   s.auto_launch = false;
-  s.objects.resize(1);
-  s.objects[0].type = ObjectType::Hurdle;
-  s.objects[0].action = TargetAction::Jump;
-  s.objects[0].position = {0.0f, 1.0f};
-  s.objects[0].heading = 0.0f;
-  s.objects[0].size = {4.0f, 0.45f, 0.1f};
+  s.objects = {placed_object(ObjectType::Hurdle, TargetAction::Jump, {0.0f, 1.0f}, {4.0f, 0.45f, 0.1f})};
   s.goal = {{0.0f, 6.0f}};
   auto walk_into = [&](bool keep_clear) {
     Params p = clearance_test_assets()->params;
@@ -295,17 +300,8 @@ TEST_CASE("a ball just past a bar: the kick straight out of the crawl still meet
   // Kept preparation leaves the crawl for the kick with a long cross-fade under way; the strike must come in
   // the kick's own pose, not part-way from the crawl's.
   Scenario s = shipped("obstacles");
-  s.objects.resize(2);
-  s.objects[0].type = ObjectType::Bar;
-  s.objects[0].action = TargetAction::Crawl;
-  s.objects[0].position = {0.0f, 5.0f};
-  s.objects[0].heading = 0.0f;
-  s.objects[0].size = {4.0f, 0.7f, 0.2f};
-  s.objects[1].type = ObjectType::Ball;
-  s.objects[1].action = TargetAction::Kick;
-  s.objects[1].position = {0.0f, 6.6f};
-  s.objects[1].heading = 0.0f;
-  s.objects[1].size = {kBallDiameter, kBallDiameter, kBallDiameter};
+  s.objects = {placed_object(ObjectType::Bar, TargetAction::Crawl, {0.0f, 5.0f}, {4.0f, 0.7f, 0.2f}),
+               placed_object(ObjectType::Ball, TargetAction::Kick, {0.0f, 6.6f}, glm::vec3(kBallDiameter))};
   s.goal = {{0.0f, 10.0f}};
   const ClearanceRun r = run_clearance(s);
   int kicks = 0;
