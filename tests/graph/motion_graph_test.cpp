@@ -65,7 +65,6 @@ TEST_CASE("motion graph: cmu31 hierarchy (core: the walk, the two turns steered 
   const MotionGraph g = MotionGraph::build(set, Params().graph);
   MESSAGE("cmu31 graph: " << g.nodes().size() << " nodes, " << g.edges().size() << " edges in " << g.build_seconds() << " s");
   test::check_hierarchy(g, 4);
-  CHECK(g.build_seconds() < 3.0f);
   const int walk = g.find("walk_69_01");
   REQUIRE(walk >= 0);
   CHECK(test::in_next(g, walk, walk));  // the walk loops
@@ -93,7 +92,6 @@ TEST_CASE("motion graph: daz43 hierarchy, at least four core nodes") {
   const MotionGraph g = MotionGraph::build(set, Params().graph);
   MESSAGE("daz43 graph: " << g.nodes().size() << " nodes, " << g.edges().size() << " edges in " << g.build_seconds() << " s");
   test::check_hierarchy(g, 4);
-  CHECK(g.build_seconds() < 3.0f);
 }
 
 TEST_CASE("motion graph: edges are local minima under the threshold unless forced") {
