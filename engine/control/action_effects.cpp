@@ -130,7 +130,41 @@ ActionTable tabulate_action_effects(const std::vector<const MotionClip*>& core, 
   return t;
 }
 
+float loop_speed(const MotionClip& clip) {
+  const glm::vec3 a = clip.clip.frames[static_cast<size_t>(clip.loop_first)].root_position;
+  const glm::vec3 b = clip.clip.frames[static_cast<size_t>(clip.loop_last)].root_position;
+  const float seconds = static_cast<float>(clip.loop_last - clip.loop_first) / clip.clip.fps;
+  return seconds > 0.0f ? glm::length(glm::vec2(b.x - a.x, b.z - a.z)) / seconds : 0.0f;
+}
+
+std::vector<const MotionClip*> default_core_clips(const MotionSet& set) {
+  const std::string source = set.manifest_path.empty() ? set.name : set.manifest_path;
+  auto first_cyclic = [&](Role role) -> const MotionClip* {
+    for (const MotionClip& c : set.clips)
+      if (c.role == role && c.cyclic) return &c;
+    return nullptr;
+  };
+  std::vector<const MotionClip*> out;
+  for (Role role : {Role::Walk, Role::TurnLeft, Role::TurnRight}) {
+    const MotionClip* c = first_cyclic(role);
+    if (c == nullptr)
+      throw InputError(source, std::string("the controller's core motions need a cyclic '") + role_name(role) +
+                                   "' clip (a loop range; a turn can be a walk steered with steer_deg_per_s)");
+    out.push_back(c);
+  }
+  // The slow walk: the slowest other cyclic walk, when it is clearly slower than the walk.
+  const MotionClip* slow = nullptr;
+  const float walk_speed = loop_speed(*out.front());
+  for (const MotionClip& c : set.clips)
+    if (c.role == Role::Walk && c.cyclic && &c != out.front() && loop_speed(c) <= kSlowWalkRatio * walk_speed &&
+        (slow == nullptr || loop_speed(c) < loop_speed(*slow)))
+      slow = &c;
+  if (slow != nullptr) out.push_back(slow);
+  return out;
+}
+
 std::vector<const MotionClip*> core_clips(const MotionSet& set, const QuantizationParams& q) {
+  if (q.core_roles.empty()) return default_core_clips(set);
   const std::string source = set.manifest_path.empty() ? set.name : set.manifest_path;
   std::vector<const MotionClip*> out;
   for (const std::string& name : q.core_roles) {

@@ -82,6 +82,18 @@ ActionTable tabulate_action_effects(const MotionSet& set, const Params& params);
 
 // The core clips of a set, in the order of quantization.core_roles: an entry that is a role name picks the
 // set's first cyclic clip of that role; any other entry must be the name of a cyclic locomotion clip.
+// Empty core_roles (the default) means the set's own: default_core_clips.
 std::vector<const MotionClip*> core_clips(const MotionSet& set, const QuantizationParams& q);
+
+// A slow walk is one whose loop covers ground at most this fraction of the walk's speed.
+constexpr float kSlowWalkRatio = 0.8f;
+
+// The set's own core motions: its first cyclic walk, left turn and right turn, then its slow walk when it
+// has one (the slowest other cyclic walk, at most kSlowWalkRatio of the walk's speed over its loop).
+// Throws InputError naming the set when a walk or a turn has no cyclic clip.
+std::vector<const MotionClip*> default_core_clips(const MotionSet& set);
+
+// Ground speed over a cyclic clip's loop, m/s.
+float loop_speed(const MotionClip& clip);
 
 }  // namespace prep

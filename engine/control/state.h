@@ -46,8 +46,8 @@ class StateSpace {
  public:
   // Throws std::invalid_argument naming the field if a count or step is not positive, or if the top alpha
   // level is not 1 (alpha is forced to 1 at the source of influence, which must be a level).
+  // core_motions: how many core motions the action table has (core_clips in action_effects.h).
   StateSpace(const QuantizationParams& q, int core_motions);
-  explicit StateSpace(const QuantizationParams& q) : StateSpace(q, static_cast<int>(q.core_roles.size())) {}
 
   int size() const { return size_; }
   int alpha_levels() const { return alpha_levels_; }

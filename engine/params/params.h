@@ -103,11 +103,13 @@ struct QuantizationParams {
   // 0.3 is worth more to the learner than walking the last metres to the launch point (reward.h).
   bool forced_top_level = true;
   // The graph's core locomotion nodes the controller plays (the m of Eq. 11-12; the paper has four). Each
-  // entry is a role (the set's first cyclic clip of it) or a clip name. The paper's core nodes are "the
+  // entry is a role (the set's first cyclic clip of it) or a clip name. Empty (the default) is the set's
+  // own: its walk, its turns both ways and its slow walk when it has one (default_core_clips in
+  // action_effects.h), so a motion set needs no Params file of its own. The paper's core nodes are "the
   // cyclic walking motions": walking, turning both ways and a slower walk. Standing (idle) is left out on
   // purpose: Eq. 17 pays 0.85 of its 1.0 for standing still facing the goal, so with the discount of 0.3
   // a learner that can stand stays where it is rather than pay Eq. 16 on the way in (sarsa.h).
-  std::vector<std::string> core_roles{"walk", "turn_left", "turn_right", "walk_slow"};
+  std::vector<std::string> core_roles;
   // An action (Eq. 12) plays its core motion for this many footsteps: 2 = one gait cycle, one loop of a
   // walk, which is where a hierarchical motion graph passes from one core node to another, and a turn of
   // one theta_g bin (45 degrees) for the built-in turns. action_effects.h explains why not one footstep.

@@ -1,6 +1,8 @@
 #include "engine/world/policy_cache.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -70,17 +72,37 @@ std::string default_policy_cache_dir() {
   return source_dir() + "/build/cache";
 }
 
-std::string policy_cache_path(const std::string& cache_dir, const std::string& set_name, const Params& params) {
-  char hash[17];
-  std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(policy_params_hash(params)));
-  std::string name = set_name.empty() ? "set" : set_name;
+std::uint64_t action_table_fingerprint(const ActionTable& table) {
+  std::uint64_t h = 1469598103934665603ull;  // FNV-1a
+  auto add = [&h](const void* data, size_t size) {
+    for (size_t i = 0; i < size; ++i) {
+      h ^= static_cast<const unsigned char*>(data)[i];
+      h *= 1099511628211ull;
+    }
+  };
+  for (const std::string& name : table.motion_names) add(name.c_str(), name.size() + 1);
+  for (const ActionEffect& e : table.effects) {
+    // Rounded to 0.1 mm and 0.001 degree, well above recomputation's rounding, so that the same clips
+    // always name the same file.
+    const std::int64_t q[] = {std::llround(e.forward * 1e4), std::llround(e.left * 1e4),
+                              std::llround(e.turn * 57.2957795 * 1e3), std::llround(e.duration * 1e4)};
+    add(q, sizeof q);
+  }
+  return h;
+}
+
+std::string policy_cache_path(const std::string& cache_dir, const MotionSet& set, const Params& params) {
+  char hash[40];
+  std::snprintf(hash, sizeof hash, "%016llx-%016llx", static_cast<unsigned long long>(policy_params_hash(params)),
+                static_cast<unsigned long long>(action_table_fingerprint(tabulate_action_effects(set, params))));
+  std::string name = set.name.empty() ? "set" : set.name;
   for (char& c : name)
     if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_')) c = '_';
   return cache_dir + "/policy-" + name + "-" + hash + ".bin";
 }
 
 std::shared_ptr<const Policy> load_cached_policy(const MotionSet& set, const std::string& cache_dir, const Params& params) {
-  const std::string path = policy_cache_path(cache_dir, set.name, params);
+  const std::string path = policy_cache_path(cache_dir, set, params);
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) return nullptr;
   try {
@@ -104,7 +126,7 @@ std::shared_ptr<const Policy> load_or_train_policy(const MotionSet& set, const M
   try {
     std::error_code ec;
     std::filesystem::create_directories(cache_dir, ec);
-    save_policy(*p, policy_cache_path(cache_dir, set.name, params));
+    save_policy(*p, policy_cache_path(cache_dir, set, params));
   } catch (const std::exception&) {
     // A read-only cache costs a retraining next time, nothing more.
   }

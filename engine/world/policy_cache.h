@@ -2,19 +2,23 @@
 // (action effects from its clips, Next(m) from the motion graph), cached on disk, and trained in a
 // background thread with progress so that a front end never freezes.
 //
-// Cache: one file per (motion set name, policy_params_hash(params)) in the cache folder
-// (policy-<set>-<hash as 16 hex digits>.bin). A cached file is used only if it parses for these Params
-// (policy.h checks the hash, version and checksum) and its action table equals the one the set gives now
-// (the clips may have changed since); otherwise it is retrained and rewritten.
+// Cache: one file per motion set and configuration in the cache folder:
+// policy-<set name>-<policy_params_hash>-<action_table_fingerprint>.bin (hashes as 16 hex digits). The
+// fingerprint of the set's core motions keeps two sets of the same name (two folders scanned into
+// "my_set") apart, so each trains once. A cached file is used only if it parses for these Params (policy.h
+// checks the hash, version and checksum) and its action table equals the one the set gives now;
+// otherwise it is retrained and rewritten.
 #pragma once
 
 #include <atomic>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <mutex>
 #include <string>
 #include <thread>
 
+#include "engine/control/action_effects.h"
 #include "engine/control/policy.h"
 #include "engine/control/sarsa.h"
 #include "engine/graph/motion_graph.h"
@@ -30,7 +34,9 @@ Policy train_policy(const MotionSet& set, const MotionGraph& graph, const Params
 
 // $PREP_CACHE_DIR, else $XDG_CACHE_HOME/prep, else $HOME/.cache/prep, else <repository>/build/cache.
 std::string default_policy_cache_dir();
-std::string policy_cache_path(const std::string& cache_dir, const std::string& set_name, const Params& params);
+// A hash of the core motions' names and what each action does (to 0.1 mm and 0.001 degree).
+std::uint64_t action_table_fingerprint(const ActionTable& table);
+std::string policy_cache_path(const std::string& cache_dir, const MotionSet& set, const Params& params);
 
 // The cached policy if it is valid for this set and these Params, else nullptr.
 std::shared_ptr<const Policy> load_cached_policy(const MotionSet& set, const std::string& cache_dir, const Params& params);

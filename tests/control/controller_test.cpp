@@ -67,7 +67,7 @@ TEST_CASE("the runtime controller takes the greedy action and feeds its alpha ba
 TEST_CASE("at run time the state's alpha is forced to 1 within the source radius, as in training") {
   const Params params;
   const auto world = test::hand_made_world(params);
-  const StateSpace states(params.quantization);
+  const StateSpace states(params.quantization, world.table.motions);
   const ActionSpace actions(states.motions(), states.alpha_levels());
   std::vector<float> q(static_cast<size_t>(states.size()) * static_cast<size_t>(actions.size()), 0.0f);
   for (int s = 0; s < states.size(); ++s) q[static_cast<size_t>(s) * actions.size() + static_cast<size_t>(actions.index({0, 4}))] = 1.0f;

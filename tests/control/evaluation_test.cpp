@@ -63,7 +63,7 @@ TEST_CASE("the arrival radius is the stopping distance of the top moving level, 
 TEST_CASE("evaluation measures the approach: a dash arrives unprepared, a prepared walk arrives at launch_alpha") {
   const Params params;
   const auto world = test::hand_made_world(params);
-  const StateSpace states(params.quantization);
+  const StateSpace states(params.quantization, world.table.motions);
   const ActionSpace actions(states.motions(), states.alpha_levels());
   // Straight at the goal at alpha 0: it always gets there, but nothing prepares it, so the forcing on
   // arrival has no time to raise alpha before the launch point passes (arrival.h).

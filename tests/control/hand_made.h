@@ -52,8 +52,8 @@ struct HandMadeWorld {
   ActionTable table;
 };
 
-// walk 1.5 m/s, turn_left 1.2 m/s at +1 rad/s, turn_right mirrored, walk_slow 0.6 m/s: the default
-// core_roles' order. The clips carry no contacts, so a loop counts as one gait cycle (two footsteps) and,
+// walk 1.5 m/s, turn_left 1.2 m/s at +1 rad/s, turn_right mirrored, walk_slow 0.6 m/s: the order of a
+// set's own core motions (default_core_clips). The clips carry no contacts, so a loop counts as one gait cycle (two footsteps) and,
 // with the default footsteps_per_action of 2, one action plays the whole 1 s loop.
 inline HandMadeWorld hand_made_world(const Params& params, const RootCurve& curve = RootCurve{0.5f, 1.0f, false}) {
   HandMadeWorld w;
@@ -89,7 +89,7 @@ inline Params small_params() {
 
 // A policy over the hand-made world with the given Q table (all actions allowed after every motion).
 inline std::shared_ptr<const Policy> hand_made_policy(const Params& params, const HandMadeWorld& world, std::vector<float> q) {
-  const StateSpace states(params.quantization);
+  const StateSpace states(params.quantization, world.table.motions);
   TrainingResult r;
   r.q = std::move(q);
   return std::make_shared<const Policy>(
@@ -97,7 +97,7 @@ inline std::shared_ptr<const Policy> hand_made_policy(const Params& params, cons
 }
 
 inline Environment make_environment(const Params& params, const ActionTable& table) {
-  const StateSpace states(params.quantization);
+  const StateSpace states(params.quantization, table.motions);
   return Environment(states, ActionSpace(states.motions(), states.alpha_levels(), action_levels(params.quantization)), table, params.reward);
 }
 

@@ -14,7 +14,7 @@ namespace {
 
 Policy sample_policy(const Params& params) {
   const auto world = test::hand_made_world(params);
-  const StateSpace states(params.quantization);
+  const StateSpace states(params.quantization, world.table.motions);
   const ActionSpace actions(states.motions(), states.alpha_levels());
   Policy p;
   p.params_hash = policy_params_hash(params);

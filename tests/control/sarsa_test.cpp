@@ -139,7 +139,7 @@ TEST_CASE("the training step's state index is the bins' index exactly, bin edges
   // d_g_bin ... theta_i_bin everywhere: on bin edges, beyond the last distance bin, for bearings a turn or
   // more off, negative distances, signed zeros, infinities and NaN.
   for (const Params& params : {Params{}, test::small_params()}) {
-    const StateSpace states(params.quantization);
+    const StateSpace states(params.quantization, 4);
     Rng rng(5);
     const float odd[] = {0.0f, -0.0f, -1.0f, 1e9f, -1e9f, 7.0f, -7.0f, 3.14159265f, -3.14159265f,
                          std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity(), std::nanf("")};

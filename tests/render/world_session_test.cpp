@@ -156,7 +156,7 @@ TEST_CASE("first start and retraining run in the background: the scene shows and
   const glm::vec2 scenario_goal = load_scenario(scenario_path("obstacles")).goal.front();
   CHECK(s.goal().x == doctest::Approx(scenario_goal.x + 1.0f));
   CHECK(s.goal().y == doctest::Approx(scenario_goal.y));
-  CHECK(std::filesystem::exists(policy_cache_path(cache, "builtin", p)));
+  CHECK(std::filesystem::exists(policy_cache_path(cache, *s.assets()->set, p)));
 
   // A change the policy depends on: the old policy plays on while the new one trains.
   const std::uint64_t old_hash = s.assets()->policy->params_hash;
@@ -189,7 +189,7 @@ TEST_CASE("first start and retraining run in the background: the scene shows and
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
   CHECK(s.assets()->policy->params_hash == policy_params_hash(r2));
-  CHECK_FALSE(std::filesystem::exists(policy_cache_path(cache, "builtin", r1)));
+  CHECK_FALSE(std::filesystem::exists(policy_cache_path(cache, *s.assets()->set, r1)));
   s.set_params(r1);
   s.set_params(r2);
   CHECK_FALSE(s.policy_stale());

@@ -72,7 +72,8 @@ TEST_CASE("the target motions: T_p and a reach ahead for every action of the bui
     CHECK(t.reach < 3.0f);
   }
   CHECK(static_cast<bool>(assets->policy));
-  CHECK(assets->core_nodes.size() == assets->params.quantization.core_roles.size());
+  CHECK(assets->core_nodes.size() == 4);  // the set's own: walk, turn left, turn right, slow walk
+  CHECK(assets->set->clips[static_cast<size_t>(assets->core_nodes.back())].clip.name == "walk_slow");
 }
 
 TEST_CASE("the world steps at the fixed time step and keeps per-frame data reachable") {
