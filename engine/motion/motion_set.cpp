@@ -178,8 +178,10 @@ std::vector<float> lowest_foot_heights(const Clip& clip, const BodyMap& body) {
   return out;
 }
 
+}  // namespace
+
 // The floor rule "auto" (see motion_set.h): per-frame floor heights.
-std::vector<float> auto_floor(const Clip& clip, const BodyMap& body) {
+std::vector<float> estimate_floor_heights(const Clip& clip, const BodyMap& body) {
   const std::vector<float> lowest = lowest_foot_heights(clip, body);
   const int frames = static_cast<int>(lowest.size());
   const int window = std::max(1, static_cast<int>(std::lround(kFloorWindowSeconds * clip.fps)));
@@ -214,6 +216,8 @@ std::vector<float> auto_floor(const Clip& clip, const BodyMap& body) {
   }
   return floor;
 }
+
+namespace {
 
 fs::path resolve_folder(const ManifestReader& reader, const std::string& folder, const std::string& first_file) {
   const fs::path given(folder);
@@ -435,7 +439,7 @@ MotionSet load_motion_set(const std::string& manifest_path, const Params& params
     if (!e.floor.automatic) {
       for (Pose& p : clip.frames) p.root_position.y -= e.floor.height;
     } else {
-      const std::vector<float> floor = auto_floor(clip, set.body);
+      const std::vector<float> floor = estimate_floor_heights(clip, set.body);
       for (size_t f = 0; f < clip.frames.size(); ++f) clip.frames[f].root_position.y -= floor[f];
     }
     if (e.steer_deg_per_s) {

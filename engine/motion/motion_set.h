@@ -76,6 +76,9 @@ struct MotionSet {
 // Unknown fields and wrong types are errors naming the manifest and the field.
 MotionSet load_motion_set(const std::string& manifest_path, const Params& params);
 
+// The floor rule "auto" above: the floor's height under each frame of a clip (in its own coordinates).
+std::vector<float> estimate_floor_heights(const Clip& clip, const BodyMap& body);
+
 // Fills the derived data (body map, mass model, contacts) of a set whose skeleton and clips are set.
 void finalize_motion_set(MotionSet& set, const Params& params);
 
