@@ -316,6 +316,7 @@ void DemoApp::draw_panels() {
   ui::scenario_panel(*this);
   ui::preparation_panel(*this);
   ui::plots_panel(*this);
+  ui::motion_folder_panel(*this);
   ui::timings_panel(*this);
   ui::camera_panel(*this);
   if (view.show_clearance) ui::clearance_panel(*this);

@@ -35,6 +35,8 @@
 
 namespace prep::demo {
 
+struct MotionFolder;
+
 // What the panels toggle about the view.
 struct DemoView {
   render::Camera camera;
@@ -87,6 +89,7 @@ class DemoApp final : public WindowApp {
   std::vector<ScenarioEntry> scenarios;  // the picker's list (default_scenarios_dir())
   std::string params_path;               // the Preparation panel's save/load file
   std::string message;                   // the last save/load/open outcome, shown in the panels
+  std::shared_ptr<const MotionFolder> motion_folder;  // the user's folder of takes, when the demo opened one
 
   const render::Scene& scene() const { return scene_; }
   // This frame's clearance of the world's characters, while the clearance view is on and the world runs;

@@ -3,10 +3,12 @@
 // launches as JSON, a frame-rate benchmark), and the clip viewer (--viewer, --clip or --bvh).
 #include <CLI/CLI.hpp>
 
+#include <filesystem>
 #include <iomanip>
 #include <iostream>
 
 #include "app/demo/headless.h"
+#include "app/demo/motion_folder.h"
 #include "app/demo/motions.h"
 #include "app/demo/scenario_run.h"
 #include "app/demo/strip.h"
@@ -16,6 +18,7 @@
 #include "app/render/image.h"
 #include "app/render/renderer.h"
 #include "engine/params/params.h"
+#include "engine/world/policy_cache.h"
 
 using namespace prep;
 using namespace prep::demo;
@@ -119,7 +122,10 @@ int main(int argc, char** argv) {
   cli.add_option("--quit-after", quit_after, "Window: close after this many frames");
   cli.add_flag("--no-vsync", no_vsync, "Window: do not wait for the display's refresh");
   cli.add_flag("--viewer", viewer, "The clip viewer instead of a scenario (also chosen by --clip, --bvh, --motions)");
-  cli.add_option("--motions", motions_arg, "Clip viewer: builtin, or a motion-set manifest (JSON)")->capture_default_str();
+  cli.add_option("--motions", motions_arg,
+                 "A folder of BVH takes: scanned into a motion set (as prep manifest does), then the obstacle course "
+                 "(or --scenario) with what the set can do; or, for the clip viewer, builtin or a motion-set manifest (JSON)")
+      ->capture_default_str();
   cli.add_option("--bvh", bvh, "Clip viewer: play one BVH file");
   cli.add_option("--unit-scale", unit_scale, "Clip viewer: BVH units to metres (0.01 for centimetres)")->capture_default_str();
   cli.add_option("--clip", clip_name, "Clip viewer: the clip to show (default: the first)");
@@ -141,7 +147,18 @@ int main(int argc, char** argv) {
   w.clearance = clearance;
   try {
     w.script = parse_key_script(script);
-    viewer = viewer || !bvh.empty() || !clip_name.empty() || motions_arg != "builtin";
+    // A folder of takes: its set plays the course; anything else named by --motions opens the clip viewer.
+    std::shared_ptr<const MotionFolder> folder;
+    if (std::filesystem::is_directory(motions_arg)) {
+      if (viewer || !bvh.empty() || !clip_name.empty()) throw std::runtime_error("--motions DIR plays a course: not with --viewer, --clip or --bvh");
+      const std::string course = scenario.empty() ? default_scenario_path() : scenario;
+      std::cerr << "prep-demo: scanning " << motions_arg << std::endl;
+      folder = open_motion_folder(motions_arg, course, default_policy_cache_dir());
+      std::cerr << "prep-demo: " << folder->manifest << ": " << folder->scan.clips.size() << " clips; " << folder->scenario << std::endl;
+      for (const std::string& c : folder->changes) std::cerr << "prep-demo: course: " << c << "\n";
+      scenario = folder->scenario;
+    }
+    viewer = viewer || !bvh.empty() || !clip_name.empty() || (motions_arg != "builtin" && !folder);
     if (viewer) {
       if (!scenario.empty()) throw std::runtime_error("--scenario and the clip viewer (--viewer, --clip, --bvh, --motions) exclude each other");
       if (clearance) throw std::runtime_error("--clearance measures a scenario's world: the clip viewer has none");
@@ -166,13 +183,14 @@ int main(int argc, char** argv) {
       o.clearance = clearance;
       o.bench_frames = bench_frames;
       o.render = render;
+      o.motion_folder = folder;
       run_scenario_headless(o);  // whether the goal was reached is in what it prints
       return 0;
     }
     if (!frames_dir.empty() || !video.empty() || !strip.empty() || json || bench_frames > 0 || until_goal)
       throw std::runtime_error("--frames-dir, --video, --strip, --json, --until-goal and --bench-frames need --headless");
     try {
-      run_demo_window(scenario, params_file.empty() ? std::nullopt : std::optional<Params>(load_params(params_file)), w);
+      run_demo_window(scenario, params_file.empty() ? std::nullopt : std::optional<Params>(load_params(params_file)), w, folder);
     } catch (const render::NoDisplayError& e) {
       std::cerr << "prep-demo: " << e.what() << "\n";
       return 2;

@@ -137,6 +137,7 @@ ScenarioRunResult run_scenario_headless(const ScenarioRunOptions& o) {
     DemoApp app(context, session, nullptr, o.render);
     app.view.show_panels = o.panels;
     app.view.show_clearance = o.clearance;
+    app.motion_folder = o.motion_folder;
     const BenchResult r = bench_app(app, context, o.bench_frames);
     std::cout << "prep-demo: scenario " << session.scenario().name << ", " << bench_report(r, o.width, o.height, o.panels, o.bench_frames)
               << "\n  engine per frame (ms): controller " << app.engine_timings.control.value() << "  motion graph "
@@ -166,6 +167,7 @@ ScenarioRunResult run_scenario_headless(const ScenarioRunOptions& o) {
     app = std::make_unique<DemoApp>(*context, session, nullptr, o.render);
     app->view.show_panels = o.panels;
     app->view.show_clearance = o.clearance;
+    app->motion_folder = o.motion_folder;
     if (!o.frames_dir.empty()) std::filesystem::create_directories(o.frames_dir);
     if (!video.empty()) writer = std::make_unique<VideoWriter>(video, o.width, o.height);
   }

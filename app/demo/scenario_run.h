@@ -8,9 +8,11 @@
 // restarts and the drawn run stops there, so the strip's frames and the video span the course.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "app/demo/motion_folder.h"
 #include "app/render/image.h"
 #include "app/render/renderer.h"
 #include "engine/world/world.h"
@@ -35,6 +37,7 @@ struct ScenarioRunOptions {
   bool clearance = false;   // the clearance view on (DemoView::show_clearance)
   int bench_frames = 0;     // > 0: a benchmark of this many frames (1/60 s each) instead of a run
   render::RenderSettings render;
+  std::shared_ptr<const MotionFolder> motion_folder;  // the user's folder of takes the scenario was made for
 };
 
 constexpr int kVideoFps = 30;

@@ -167,7 +167,8 @@ void run_loop(render::GlfwContext& context, WindowApp& app, const WindowOptions&
 
 }  // namespace
 
-void run_demo_window(const std::string& scenario, const std::optional<Params>& params, const WindowOptions& options) {
+void run_demo_window(const std::string& scenario, const std::optional<Params>& params, const WindowOptions& options,
+                     std::shared_ptr<const MotionFolder> folder) {
   load_scenario(scenario);  // a bad file is named before a window opens
   render::GlfwContext context(options.width, options.height, "prep demo", options.vsync);
   WorldSession session;  // background loading and training: the window shows the scene at once
@@ -176,6 +177,7 @@ void run_demo_window(const std::string& scenario, const std::optional<Params>& p
   install_input(context, window_state);
   DemoApp app(context, session, context.window());
   app.view.show_clearance = options.clearance;
+  app.motion_folder = std::move(folder);
   window_state.app = &app;
   std::cout << "prep-demo: " << gl::describe_context() << "\n";
   std::cout << "prep-demo: scenario " << session.scenario().name << " (" << scenario << ")" << std::endl;

@@ -2,10 +2,12 @@
 // keyboard and the mouse (drag: orbit; right-drag: pan; wheel: zoom; a click: DemoApp::on_click).
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "app/demo/motion_folder.h"
 #include "app/demo/motions.h"
 #include "engine/params/params.h"
 
@@ -37,7 +39,9 @@ struct WindowOptions {
 
 // Run the window until closed. Throw render::NoDisplayError when no window can be opened.
 // The scenario demo: the scenario opens at once (its motions load and its policy trains in the background).
-void run_demo_window(const std::string& scenario, const std::optional<Params>& params, const WindowOptions& options);
+// `folder`: the user's folder of takes the scenario was made for (its panel is shown), or nullptr.
+void run_demo_window(const std::string& scenario, const std::optional<Params>& params, const WindowOptions& options,
+                     std::shared_ptr<const MotionFolder> folder = nullptr);
 // The clip viewer.
 void run_clip_viewer_window(const DemoMotions& motions, const WindowOptions& options);
 

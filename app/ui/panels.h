@@ -18,6 +18,8 @@ void scenario_panel(demo::DemoApp& app);     // scenario picker, auto, pause, la
 void preparation_panel(demo::DemoApp& app);  // C_i per joint group and joint, w_b/w_s/w_m, thresholds, save/load
 void plots_panel(demo::DemoApp& app);        // alpha and the COM over the last seconds, the floor overlay and
                                              // clearance view toggles
+void motion_folder_panel(demo::DemoApp& app);  // a folder of the user's takes: what the scan found, what the
+                                               // set lacks and what the course lost for it
 void clearance_panel(demo::DemoApp& app);    // while the clearance view is on: the user's nearest object
 void timings_panel(demo::DemoApp& app);      // engine stages per frame, render stages, frames per second
 void camera_panel(demo::DemoApp& app);       // follow, orbit, zoom, keys

@@ -1,6 +1,7 @@
 #include <imgui.h>
 
 #include "app/demo/demo_app.h"
+#include "app/demo/motion_folder.h"
 #include "app/ui/panels.h"
 
 namespace prep::ui {
@@ -18,7 +19,7 @@ void row(const char* name, double ms) {
 }  // namespace
 
 void timings_panel(demo::DemoApp& app) {
-  place_panel(app, true, "Plots", kRightWidth);
+  place_panel(app, true, app.motion_folder ? "Motion capture" : "Plots", kRightWidth);
   if (ImGui::Begin("Timings", nullptr, kPanelFlags)) {
     const demo::Timings& t = app.timings;
     const demo::EngineTimings& e = app.engine_timings;
