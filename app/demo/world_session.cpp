@@ -51,13 +51,6 @@ using floor_plane::forward_of;
 
 // Sections of Params the assets (motion graph, T_p, core motions) are built from: a change there needs
 // new assets, not just World::set_params.
-bool same_asset_params(const Params& a, const Params& b) {
-  const nlohmann::json ja = nlohmann::json::parse(params_to_json(a)), jb = nlohmann::json::parse(params_to_json(b));
-  for (const char* section : {"contacts", "graph", "reference", "quantization"})
-    if (ja.value(section, nlohmann::json()) != jb.value(section, nlohmann::json())) return false;
-  return true;
-}
-
 bool ready(const std::future<std::shared_ptr<WorldAssets>>& f) {
   return f.valid() && f.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
 }
@@ -90,7 +83,7 @@ WorldSession::~WorldSession() {
 void WorldSession::open(const std::string& path, std::optional<Params> params) {
   Scenario s = load_scenario(path);                                 // InputError: keep what is open
   Params p = params ? std::move(*params) : load_scenario_params(s);  // likewise
-  const bool reuse = assets_ && assets_->policy && s.motions == scenario_.motions && same_asset_params(p, params_);
+  const bool reuse = assets_ && assets_->policy && s.motions == scenario_.motions && same_world_assets_params(p, params_);
   retire_job();
   if (loading_.valid()) {
     auto r = std::make_unique<Retired>();
@@ -330,7 +323,7 @@ render::Scene WorldSession::scene(bool balance_overlay) const {
 }
 
 void WorldSession::set_params(const Params& params) {
-  if (!same_asset_params(params, params_)) {
+  if (!same_world_assets_params(params, params_)) {
     // The motion graph, T_p or the core motions change: new assets (the scenario reopens with these Params).
     const std::string path = path_;
     open(path, params);

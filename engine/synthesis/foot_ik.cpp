@@ -23,6 +23,9 @@ glm::quat rotation_between(glm::vec3 from, glm::vec3 to) {
   return glm::angleAxis(std::acos(std::clamp(d, -1.0f, 1.0f)), glm::normalize(axis));
 }
 
+// m: how far above the floor an ankle joint is kept, so that its toe can be pitched up to the floor.
+constexpr float kAnkleClearance = 0.01f;
+
 glm::vec3 toe_tip(const Skeleton& skeleton, const LegChain& leg, const std::vector<glm::vec3>& wp,
                   const std::vector<glm::quat>& wr) {
   return end_site_position(skeleton, leg.toe_tip_joint, wp, wr);
@@ -198,6 +201,40 @@ void apply_foot_ik(const Skeleton& skeleton, const BodyMap& body, const IkParams
       plant.fade = 1.0f;
     }
   }
+}
+
+int keep_toes_above_floor(const Skeleton& skeleton, const BodyMap& body, Pose& pose,
+                          const std::vector<glm::vec3>& world_positions, const std::vector<glm::quat>& world_rotations) {
+  // Ankles up to the floor first: a toe can only be pitched up about an ankle above it.
+  float lift = 0.0f;
+  for (const LegChain& leg : body.legs) lift = std::max(lift, kAnkleClearance - world_positions[static_cast<size_t>(leg.ankle)].y);
+  lift = std::max(lift, 0.0f);
+  int turned = 0;
+  float still_below = 0.0f;  // a toe no pitch could lift (its foot pointing straight down): the body rises
+  for (const LegChain& leg : body.legs) {
+    const glm::vec3 up(0.0f, lift, 0.0f);
+    const glm::vec3 ankle = world_positions[static_cast<size_t>(leg.ankle)] + up;
+    const glm::vec3 toe = toe_tip(skeleton, leg, world_positions, world_rotations) + up;
+    if (toe.y >= 0.0f) continue;
+    const glm::vec3 foot = toe - ankle;
+    const float length = glm::length(foot);
+    const glm::vec2 ahead(foot.x, foot.z);
+    if (glm::length(ahead) < 1e-4f || ankle.y >= length) {
+      still_below = std::max(still_below, -toe.y);
+      continue;
+    }
+    // The same foot, pitched up until its tip touches the floor.
+    const float reach = std::sqrt(std::max(0.0f, length * length - ankle.y * ankle.y));
+    const glm::vec2 along = glm::normalize(ahead) * reach;
+    const glm::quat pitch = rotation_between(foot, glm::vec3(along.x, -ankle.y, along.y));
+    const size_t a = static_cast<size_t>(leg.ankle);
+    const int parent = skeleton.joints[a].parent;
+    const glm::quat parent_world = parent >= 0 ? world_rotations[static_cast<size_t>(parent)] : glm::quat(1.0f, 0.0f, 0.0f, 0.0f);
+    pose.rotations[a] = glm::normalize(glm::inverse(parent_world) * pitch * world_rotations[a]);
+    ++turned;
+  }
+  pose.root_position.y += lift + still_below;
+  return turned;
 }
 
 }  // namespace prep

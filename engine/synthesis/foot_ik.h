@@ -68,4 +68,13 @@ void apply_foot_ik(const Skeleton& skeleton, const BodyMap& body, const IkParams
                    const FrameContacts& pinned, float dt, Pose& pose, const std::vector<glm::vec3>& world_positions,
                    const std::vector<glm::quat>& world_rotations, FootPlants& plants, float& root_drop);
 
+// The floor, last of all. A pose whose ankle joint is below the floor (y = 0) is lifted until it is not
+// (a cross-fade from a crawl on its knees into a walk sweeps the feet through it). Then a toe tip below
+// the floor (the blend, the trajectory or a leg solved for a planted heel) is pitched back up to it about
+// the ankle, the foot turning about its lateral axis as it rolls onto its heel, the ankle joint and
+// everything above it untouched. `world_positions` / `world_rotations` are the pose's forward kinematics
+// (stale on return when anything changed). Returns the feet turned.
+int keep_toes_above_floor(const Skeleton& skeleton, const BodyMap& body, Pose& pose,
+                          const std::vector<glm::vec3>& world_positions, const std::vector<glm::quat>& world_rotations);
+
 }  // namespace prep

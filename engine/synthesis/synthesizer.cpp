@@ -180,6 +180,12 @@ void Synthesizer::step(const SynthesisInput& in, SynthesisState& state, Synthesi
   stage_trajectory(in, state, scratch, out);
   stage_ik(in, state, scratch, out);
   stage_balance(in, state, scratch, out, report);
+  stage_floor(scratch, out);
+}
+
+void Synthesizer::stage_floor(SynthesisScratch& s, Pose& out) const {
+  forward_kinematics(*skeleton_, out, s.positions, &s.rotations);
+  keep_toes_above_floor(*skeleton_, body_, out, s.positions, s.rotations);
 }
 
 }  // namespace prep

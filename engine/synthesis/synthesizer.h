@@ -112,6 +112,8 @@ class Synthesizer {
   void stage_ik(const SynthesisInput& in, SynthesisState& state, SynthesisScratch& scratch, Pose& out) const;
   void stage_balance(const SynthesisInput& in, SynthesisState& state, SynthesisScratch& scratch, Pose& out,
                      SynthesisReport* report) const;
+  // A toe tip below the floor is pitched up to it (keep_toes_above_floor in foot_ik.h).
+  void stage_floor(SynthesisScratch& scratch, Pose& out) const;
 
  private:
   std::shared_ptr<const Skeleton> skeleton_;

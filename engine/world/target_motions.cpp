@@ -7,6 +7,8 @@
 #include <optional>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "engine/graph/reference_posture.h"
 #include "engine/library/builtin.h"
 #include "engine/library/generated.h"
@@ -15,6 +17,8 @@
 #include "engine/synthesis/preparation_run.h"
 #include "engine/util/error.h"
 #include "engine/util/files.h"
+#include <nlohmann/json.hpp>
+
 #include "engine/world/clearance.h"
 #include "engine/world/floor.h"
 #include "engine/world/policy_cache.h"
@@ -243,6 +247,13 @@ std::shared_ptr<const MotionSet> load_scenario_motions(const Scenario& scenario,
   if (scenario.motions == "builtin") return std::make_shared<const MotionSet>(make_builtin_motion_set(params));
   const std::string path = scenario.motions.front() == '/' ? scenario.motions : source_dir() + "/" + scenario.motions;
   return std::make_shared<const MotionSet>(load_motion_set(path, params));
+}
+
+bool same_world_assets_params(const Params& a, const Params& b) {
+  const nlohmann::json ja = nlohmann::json::parse(params_to_json(a)), jb = nlohmann::json::parse(params_to_json(b));
+  for (const char* section : {"contacts", "graph", "reference", "quantization"})
+    if (ja.value(section, nlohmann::json()) != jb.value(section, nlohmann::json())) return false;
+  return true;
 }
 
 Params load_scenario_params(const Scenario& scenario) {

@@ -671,6 +671,9 @@ void World::step_character(int index) {
     out = faded;
     rt.fade_left -= dt;
   }
+  // Whatever made the pose (synthesis, a recorded clip fitted to its obstacle, a cross-fade between two
+  // poses whose feet differ), no toe goes into the floor.
+  synthesizer_->stage_floor(rt.scratch, out);
   if (!c.in_target && rt.fade_left <= 0.0f) c.arm_out_at = -1;
   c.pose = out;
   const glm::vec2 previous_position = c.position;

@@ -178,6 +178,9 @@ WorldAssets make_world_assets(std::shared_ptr<const MotionSet> set, const Params
 std::shared_ptr<const MotionSet> load_scenario_motions(const Scenario& scenario, const Params& params);
 // The Params a scenario names (its "params" file) or the defaults.
 Params load_scenario_params(const Scenario& scenario);
+// Whether two Params make the same assets (the motion graph, T_p, the core motions): their contacts, graph,
+// reference and quantization sections are equal. Other changes apply to a running world (set_params).
+bool same_world_assets_params(const Params& a, const Params& b);
 // All of it, blocking: the scenario's motions, the assets, and the policy from the cache folder or trained
 // now (policy_cache.h). `trained` tells whether training ran.
 std::shared_ptr<const WorldAssets> prepare_world_assets(const Scenario& scenario, const Params& params,
