@@ -24,10 +24,10 @@ void print_period(const prep::SoakPeriod& p) {
   const prep::SoakViolations& v = p.violations;
   std::fprintf(stderr,
                "hour %d: %.0f s simulated, %lld character-ticks, %d courses, %d goals moved, %d Params changes "
-               "(%d refused), %d retrainings, %.1f MB resident; violations %lld (pose %lld, feet %lld, root %lld, "
+               "(%d refused), %d retrainings, %.1f MB resident, %.1f MB on the heap; violations %lld (pose %lld, feet %lld, root %lld, "
                "alpha %lld, stuck %lld, memory %lld)\n",
                p.hour, p.simulated_s, static_cast<long long>(p.character_ticks), p.courses, p.goals_moved, p.params_changes,
-               p.params_refused, p.retrains, p.rss_mb, static_cast<long long>(v.total()), static_cast<long long>(v.bad_pose),
+               p.params_refused, p.retrains, p.rss_mb, p.heap_mb, static_cast<long long>(v.total()), static_cast<long long>(v.bad_pose),
                static_cast<long long>(v.foot_below), static_cast<long long>(v.root_height), static_cast<long long>(v.alpha_range),
                static_cast<long long>(v.stuck), static_cast<long long>(v.memory));
   for (const std::string& s : p.first_violations) std::fprintf(stderr, "  %s\n", s.c_str());
@@ -50,8 +50,11 @@ prep::cli::RegisterCommand soak_command(
         options.cache_dir = o->cache;
         const prep::SoakReport r = prep::run_soak(options, print_period);
         if (o->json) std::cout << prep::soak_json(r).dump(2) << "\n";
-        std::fprintf(stderr, "%d characters, %.1f s of wall time; resident memory %.2f MB after the first minute, %.2f MB at the end: %s\n",
-                     r.characters, r.wall_s, r.rss_first_minute_mb, r.rss_end_mb, r.ok() ? "no violation" : "VIOLATIONS");
+        std::fprintf(stderr,
+                     "%d characters, %.1f s of wall time; the heap %.3f MB after the first minute, %.3f MB at the end "
+                     "(resident %.1f / %.1f MB): %s\n",
+                     r.characters, r.wall_s, r.heap_first_minute_mb, r.heap_end_mb, r.rss_first_minute_mb, r.rss_end_mb,
+                     r.ok() ? "no violation" : "VIOLATIONS");
         if (!r.ok()) throw std::runtime_error("the soak found violations (listed above)");
       });
     });
