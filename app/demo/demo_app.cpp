@@ -297,6 +297,17 @@ void DemoApp::restore_panels(int width, int height) {
   ++c.frames_since_redraw;
 }
 
+bool DemoApp::load_params_file(const std::string& path) {
+  try {
+    session_.set_params(load_params(path));
+    message = "loaded the Params from " + path;
+    return true;
+  } catch (const std::exception& e) {
+    message = e.what();  // names the file and the field
+    return false;
+  }
+}
+
 void DemoApp::remember_panel(const char* name) {
   const ImVec2 p = ImGui::GetWindowPos(), s = ImGui::GetWindowSize();
   panel_rects_[name] = glm::vec4(p.x, p.y, s.x, s.y);

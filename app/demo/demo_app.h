@@ -79,6 +79,9 @@ class DemoApp final : public WindowApp {
   // Opens a scenario from the picker (keeps the edited Params when the new one names the same Params file);
   // a bad file leaves a message and the current scenario.
   void open_scenario(const std::string& path);
+  // The Preparation panel's Load: the Params file's values in force, or, for a file that cannot be read,
+  // its error (naming the file and the field) in `message` and the values in force kept.
+  bool load_params_file(const std::string& path);
   // The camera placed behind the user's character, looking along its heading at the course ahead.
   void reset_camera();
 

@@ -121,6 +121,12 @@ int main(int argc, char** argv) {
   cli.add_option("--screenshot-after", screenshot_after, "Window: frame after which --screenshot is taken (-1: on closing, e.g. Escape)")->capture_default_str();
   cli.add_option("--quit-after", quit_after, "Window: close after this many frames");
   cli.add_flag("--no-vsync", no_vsync, "Window: do not wait for the display's refresh");
+  double stress_seconds = 0.0;
+  std::uint64_t stress_seed = 1;
+  cli.add_option("--stress", stress_seconds,
+                 "Window: a stress run of this many seconds (a random tunable changed every frame, scenarios switched, "
+                 "random launches, a broken Params file loaded half-way), then close; exit 1 if it failed");
+  cli.add_option("--stress-seed", stress_seed, "Window: the stress run's seed")->capture_default_str();
   cli.add_flag("--viewer", viewer, "The clip viewer instead of a scenario (also chosen by --clip, --bvh, --motions)");
   cli.add_option("--motions", motions_arg,
                  "A folder of BVH takes: scanned into a motion set (as prep manifest does), then the obstacle course "
@@ -145,6 +151,8 @@ int main(int argc, char** argv) {
   w.screenshot_after = screenshot_after;
   w.quit_after = quit_after;
   w.clearance = clearance;
+  w.stress_seconds = stress_seconds;
+  w.stress_seed = stress_seed;
   try {
     w.script = parse_key_script(script);
     // A folder of takes: its set plays the course; anything else named by --motions opens the clip viewer.

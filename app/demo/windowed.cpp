@@ -1,15 +1,20 @@
 #include "app/demo/windowed.h"
 
+#include <unistd.h>
+
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <filesystem>
+#include <functional>
 #include <iostream>
 #include <stdexcept>
 
 #include "app/demo/clip_viewer_app.h"
+#include "app/demo/stress.h"
 #include "app/demo/demo_app.h"
 #include "app/render/gl_context.h"
 #include "app/render/gl_loader.h"
@@ -133,10 +138,14 @@ void install_input(render::GlfwContext& context, WindowState& window_state) {
 }
 
 // The frame loop: events, scripted keys, a frame, the screenshot, the swap.
-void run_loop(render::GlfwContext& context, WindowApp& app, const WindowOptions& options) {
+// `before_frame` (when given) runs before each frame with the seconds since the loop started.
+void run_loop(render::GlfwContext& context, WindowApp& app, const WindowOptions& options,
+              const std::function<void(double)>& before_frame = {}) {
   auto previous = Clock::now();
+  const auto start = previous;
   for (int frame = 0; !context.should_close() && !app.quit_requested; ++frame) {
     glfwPollEvents();
+    if (before_frame) before_frame(std::chrono::duration<double>(Clock::now() - start).count());
     for (const ScriptedKey& k : options.script) {
       if (k.frame == frame) {
         std::cout << "prep-demo: frame " << frame << ": scripted key " << k.key << " down\n";
@@ -181,7 +190,21 @@ void run_demo_window(const std::string& scenario, const std::optional<Params>& p
   window_state.app = &app;
   std::cout << "prep-demo: " << gl::describe_context() << "\n";
   std::cout << "prep-demo: scenario " << session.scenario().name << " (" << scenario << ")" << std::endl;
-  run_loop(context, app, options);
+  if (options.stress_seconds <= 0.0) {
+    run_loop(context, app, options);
+    return;
+  }
+  const std::string broken = (std::filesystem::temp_directory_path() / ("prep-stress-broken-" + std::to_string(::getpid()) + ".json")).string();
+  StressScript stress(options.stress_seed, options.stress_seconds, broken);
+  run_loop(context, app, options, [&](double elapsed) {
+    if (stress.done(elapsed)) {
+      app.quit_requested = true;
+      return;
+    }
+    stress.before_frame(app, elapsed);
+  });
+  std::cout << "prep-demo: " << stress.summary() << std::endl;
+  if (!stress.report().ok()) throw std::runtime_error("the stress run failed: " + stress.summary());
 }
 
 void run_clip_viewer_window(const DemoMotions& motions, const WindowOptions& options) {

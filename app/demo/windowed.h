@@ -2,6 +2,7 @@
 // keyboard and the mouse (drag: orbit; right-drag: pan; wheel: zoom; a click: DemoApp::on_click).
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -34,6 +35,8 @@ struct WindowOptions {
   std::string screenshot;       // written after frame `screenshot_after` (from the back buffer), then quit;
   int screenshot_after = 60;    // -1: when the demo is closed (Escape or the window's close button)
   int quit_after = -1;          // frames; -1 runs until the window closes
+  double stress_seconds = 0.0;  // > 0: a stress run of that many seconds (stress.h), then close
+  std::uint64_t stress_seed = 1;
   bool clearance = false;       // the scenario demo starts with its clearance view on
 };
 

@@ -101,14 +101,7 @@ void file_controls(demo::DemoApp& app) {
     }
   }
   ImGui::SameLine();
-  if (ImGui::Button("Load")) {
-    try {
-      app.session().set_params(load_params(app.params_path));
-      app.message = "loaded the Params from " + app.params_path;
-    } catch (const std::exception& e) {
-      app.message = e.what();  // names the file and the field
-    }
-  }
+  if (ImGui::Button("Load")) app.load_params_file(app.params_path);
 }
 
 }  // namespace

@@ -1,5 +1,9 @@
 #include "engine/params/params.h"
 
+#include <cmath>
+#include <limits>
+#include <sstream>
+
 #include <nlohmann/json.hpp>
 
 #include "engine/util/error.h"
@@ -118,7 +122,86 @@ Params params_from_json(const std::string& text, const std::string& source_name)
     });
     if (!known) throw InputError(source_name, "unknown section '" + it.key() + "'");
   }
+  check_params(p, source_name);
   return p;
+}
+
+namespace {
+
+// A number's allowed range. Every number of the Params is at least 0 unless a rule says otherwise.
+struct Range {
+  const char* field;  // "section.field"
+  double lo, hi;
+  bool lo_open;       // lo itself not allowed
+};
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr Range kRanges[] = {
+    // Divided by, or a count of something there must be one of.
+    {"runtime.fixed_dt", 0.0, 0.1, true},
+    {"runtime.launch_alpha", 0.0, 1.0, true},
+    {"runtime.kept_alpha", -kInf, 1.0, false},  // negative: resume at 0
+    {"quantization.d_step", 0.0, kInf, true},
+    {"quantization.theta_g_step_deg", 0.0, 360.0, true},
+    {"quantization.theta_i_step_deg", 0.0, 360.0, true},
+    {"quantization.alpha_step", 0.0, 1.0, true},
+    {"quantization.d_g_bins", 1, kInf, false},
+    {"quantization.d_i_bins", 1, kInf, false},
+    {"quantization.theta_g_bins", 1, kInf, false},
+    {"quantization.theta_i_bins", 1, kInf, false},
+    {"quantization.alpha_levels", 2, kInf, false},
+    {"quantization.footsteps_per_action", 1, kInf, false},
+    {"sarsa.threads", 1, 256, false},
+    {"sarsa.convergence_episodes", 1, kInf, false},
+    {"sarsa.max_episode_steps", 1, kInf, false},
+    {"sarsa.max_steps", 1, kInf, false},
+    {"balance.max_steps", 0, 1000, false},
+    {"balance.max_halvings", 0, 60, false},
+    // Fractions and probabilities.
+    {"sarsa.learning_rate", 0.0, 1.0, false},
+    {"sarsa.discount", 0.0, 1.0, false},
+    {"sarsa.epsilon", 0.0, 1.0, false},
+    {"sarsa.convergence_fraction", 0.0, 1.0, false},
+    {"sarsa.source_at_goal_fraction", 0.0, 1.0, false},
+    {"ik.knee_soft_start", 0.0, 1.0, true},
+    {"ik.reach_limit", 0.0, 1.0, true},
+    {"balance.alpha_threshold", 0.0, 1.0, false},
+};
+
+std::string number_text(double v) {
+  std::ostringstream out;
+  out << v;
+  return out.str();
+}
+
+}  // namespace
+
+void check_params(const Params& params, const std::string& source_name) {
+  const json j = json::parse(params_to_json(params));
+  for (const auto& [section, fields] : j.items()) {
+    if (!fields.is_object()) continue;
+    for (const auto& [field, value] : fields.items()) {
+      if (!value.is_number()) continue;
+      const std::string name = section + "." + field;
+      Range r{nullptr, 0.0, kInf, false};
+      for (const Range& k : kRanges)
+        if (name == k.field) r = k;
+      const double v = value.get<double>();
+      const bool ok = std::isfinite(v) && (r.lo_open ? v > r.lo : v >= r.lo) && v <= r.hi;
+      if (!ok)
+        throw InputError(source_name, "'" + name + "' is " + number_text(v) + ", outside " + (r.lo_open ? "(" : "[") +
+                                          number_text(r.lo) + ", " + number_text(r.hi) + "]");
+    }
+  }
+  // The state space (Sec. 6.1): alpha is forced to 1 at the source, so the top level must be 1; the angle
+  // bins must cover the whole turn.
+  const QuantizationParams& q = params.quantization;
+  if (std::abs(q.alpha_step * static_cast<float>(q.alpha_levels - 1) - 1.0f) > 1e-4f)
+    throw InputError(source_name, "'quantization': (alpha_levels - 1) x alpha_step is " +
+                                      number_text(q.alpha_step * static_cast<float>(q.alpha_levels - 1)) + ", must be 1");
+  if (std::abs(q.theta_g_step_deg * static_cast<float>(q.theta_g_bins) - 360.0f) > 0.05f)
+    throw InputError(source_name, "'quantization': theta_g_step_deg x theta_g_bins must be 360");
+  if (std::abs(q.theta_i_step_deg * static_cast<float>(q.theta_i_bins) - 360.0f) > 0.05f)
+    throw InputError(source_name, "'quantization': theta_i_step_deg x theta_i_bins must be 360");
 }
 
 Params load_params(const std::string& path) { return params_from_json(read_file(path), path); }

@@ -214,6 +214,12 @@ void save_params(const Params& params, const std::string& path);
 std::string params_to_json(const Params& params);
 Params params_from_json(const std::string& text, const std::string& source_name);
 
+// The ranges loading checks (params_from_json calls it): every number at least 0 unless its use says
+// otherwise, counts at least 1, steps and the tick above 0, fractions and probabilities within [0, 1], and the
+// state space's own rules ((alpha_levels - 1) x alpha_step = 1; the angle bins cover 360 degrees). Throws
+// InputError naming the source and the field, so a value no part of the engine can use never gets in.
+void check_params(const Params& params, const std::string& source_name);
+
 // A stable hash of the fields a trained policy depends on (quantization, reward, SARSA constants and the
 // lower-body blend curve), written into policy files so that a mismatched policy is refused.
 std::uint64_t policy_params_hash(const Params& params);
