@@ -263,8 +263,12 @@ void finalize_motion_set(MotionSet& set, const Params& params) {
 }
 
 MotionSet load_motion_set(const std::string& manifest_path, const Params& params) {
+  return parse_motion_set(read_file(manifest_path), manifest_path, params);
+}
+
+MotionSet parse_motion_set(const std::string& text, const std::string& manifest_path, const Params& params) {
   const ManifestReader reader(manifest_path);
-  const json root = reader.parse(read_file(manifest_path));
+  const json root = reader.parse(text);
   reader.only_fields(root, {}, {"name", "folder", "unit_scale", "units", "skip_first_frame", "reference", "floor",
                                 "description", "clips"});
   MotionSet set;
