@@ -22,7 +22,7 @@ JointMap parse_joint_map(const std::string& text, const std::string& source_name
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {  // bad syntax, or a number past a double's range (1e400)
     throw InputError(source_name, "not valid JSON: " + std::string(e.what()));
   }
   if (!j.is_object()) throw InputError(source_name, "a joint map is a JSON object");

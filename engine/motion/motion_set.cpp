@@ -59,6 +59,8 @@ class ManifestReader {
       std::string what = e.what();
       const size_t colon = what.find("parse error");
       throw InputError(path_, line, "invalid JSON: " + (colon == std::string::npos ? what : what.substr(colon)));
+    } catch (const json::exception& e) {  // a number past a double's range (1e400)
+      throw InputError(path_, std::string("invalid JSON: ") + e.what());
     }
   }
 

@@ -106,6 +106,8 @@ Params params_from_json(const std::string& text, const std::string& source_name)
     j = json::parse(text);
   } catch (const json::parse_error& e) {
     throw InputError(source_name, "invalid JSON at byte " + std::to_string(e.byte) + ": " + e.what());
+  } catch (const json::exception& e) {  // a number past a double's range (1e400)
+    throw InputError(source_name, std::string("invalid JSON: ") + e.what());
   }
   if (!j.is_object()) throw InputError(source_name, "params must be a JSON object");
   Params p;
