@@ -264,6 +264,10 @@ TEST_CASE("bad manifests give errors naming the manifest and the field") {
   CHECK_THROWS_WITH_AS(load_motion_set(test::repo() + "/tests/fuzz/corpus/manifest/number_overflow.json", Params{}),
                        doctest::Contains("number_overflow.json: invalid JSON: [json.exception.out_of_range.406] number overflow"),
                        InputError);
+  // A NUL in a field name ("\u0000clips") ended the message there (found by the manifest fuzz target).
+  CHECK_THROWS_WITH_AS(load_motion_set(test::repo() + "/tests/fuzz/corpus/manifest/nul_in_field_name.json", Params{}),
+                       doctest::Contains("nul_in_field_name.json: \\x00clips: unknown field (expected one of: name, folder"),
+                       InputError);
   CHECK_THROWS_WITH_AS(load("unknown_field.json", cmu31_manifest(walk, ", \"speed\": 2")),
                        doctest::Contains("unknown_field.json: speed: unknown field"), InputError);
   CHECK_THROWS_WITH_AS(load("no_folder.json", "{\"clips\": [" + walk + "]}"), doctest::Contains("no_folder.json: folder: missing"),
