@@ -17,6 +17,10 @@ shift 2
 seeds="$here/tests/fuzz/corpus/$target"
 [ -d "$seeds" ] || { echo "fuzz: no target '$target' (no $seeds)" >&2; exit 2; }
 
+if ! command -v clang++-14 >/dev/null || [ ! -e "$(clang++-14 -print-resource-dir)/lib/linux/libclang_rt.fuzzer-x86_64.a" ]; then
+  echo "fuzz: needs clang-14 with libFuzzer: sudo apt-get install clang-14 libclang-rt-14-dev" >&2
+  exit 2
+fi
 build="${PREP_FUZZ_BUILD:-$here/build-fuzz}"
 if [ ! -f "$build/build.ninja" ]; then
   cmake -S "$here" -B "$build" -G Ninja -DPREP_FUZZ=ON -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14 \
@@ -37,11 +41,11 @@ start=$SECONDS
 # The scratch folder comes first: libFuzzer writes what it finds into its first corpus folder.
 nice -n 15 "$build/prep_fuzz_$target" "${flags[@]}" "$@" "$scratch/$target" "$seeds" >"$log" 2>&1 || status=$?
 # The last status line holds the coverage (cov: edges, ft: features); -print_final_stats the executions.
-last="$(grep -E '#[0-9]+.*cov: ' "$log" | tail -1 || true)"
+last="$(grep -aE '#[0-9]+.*cov: ' "$log" | tail -1 || true)"
 execs="$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)"
 echo "fuzz $target: ${execs:-?} executions in $((SECONDS - start)) s; cov $(sed -n 's/.*cov: \([0-9]*\).*/\1/p' <<<"$last") ft $(sed -n 's/.* ft: \([0-9]*\).*/\1/p' <<<"$last") (log: $log)"
 if ((status != 0)); then
   echo "fuzz $target: FAILED (exit $status); the input is in $scratch/artifacts/:" >&2
-  grep -E '^(==[0-9]+==ERROR|SUMMARY|fuzz:|.*runtime error|artifact_prefix|Test unit written)' "$log" | head -20 >&2
+  grep -aE '^(==[0-9]+==ERROR|SUMMARY|fuzz:|.*runtime error|artifact_prefix|Test unit written)' "$log" | head -20 >&2
   exit 1
 fi
