@@ -1,6 +1,7 @@
 #include "engine/control/state.h"
 
 #include <cmath>
+#include <initializer_list>
 #include <stdexcept>
 #include <string>
 
@@ -43,9 +44,17 @@ StateSpace::StateSpace(const QuantizationParams& q, int core_motions)
     throw std::invalid_argument("quantization: theta_g_step_deg * theta_g_bins must be 360");
   if (std::fabs(theta_i_step_ * static_cast<float>(theta_i_bins_) - 2.0f * kPi) > 1e-3f)
     throw std::invalid_argument("quantization: theta_i_step_deg * theta_i_bins must be 360");
-  const long long n = static_cast<long long>(alpha_levels_) * motions_ * d_g_bins_ * theta_g_bins_ * d_i_bins_ *
-                      theta_i_bins_;
-  if (n > (1ll << 30)) throw std::invalid_argument("quantization: too many states (" + std::to_string(n) + ")");
+  // The product factor by factor, stopping past the limit: six counts of up to 2^31 each would overflow
+  // even 64 bits, while a product of at most 2^30 times one count fits.
+  long long n = 1;
+  for (const int count : {alpha_levels_, motions_, d_g_bins_, theta_g_bins_, d_i_bins_, theta_i_bins_}) {
+    n *= count;
+    if (n > (1ll << 30))
+      throw std::invalid_argument("quantization: too many states (more than 2^30: alpha levels " + std::to_string(alpha_levels_) +
+                                  " x motions " + std::to_string(motions_) + " x bins " + std::to_string(d_g_bins_) + ", " +
+                                  std::to_string(theta_g_bins_) + ", " + std::to_string(d_i_bins_) + ", " +
+                                  std::to_string(theta_i_bins_) + ")");
+  }
   size_ = static_cast<int>(n);
   stride_theta_g_ = d_i_bins_ * theta_i_bins_;
   stride_d_g_ = theta_g_bins_ * stride_theta_g_;

@@ -22,7 +22,7 @@ JointMap parse_joint_map(const std::string& text, const std::string& source_name
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {  // bad syntax, or a number past a double's range (1e400)
     throw InputError(source_name, "not valid JSON: " + std::string(e.what()));
   }
   if (!j.is_object()) throw InputError(source_name, "a joint map is a JSON object");
@@ -50,9 +50,12 @@ JointMap load_joint_map(const std::string& path) { return parse_joint_map(read_f
 JointMap inverted(const JointMap& map) {
   JointMap out;
   out.name = map.name + " (inverted)";
-  for (const auto& [theirs, ours] : map.pairs) {
+  for (const auto& pair : map.pairs) {
+    // A plain reference, not a structured binding: clang (the fuzz tree's compiler) does not let a lambda
+    // capture a binding before C++20.
+    const std::string& ours = pair.second;
     const bool taken = std::any_of(out.pairs.begin(), out.pairs.end(), [&](const auto& p) { return p.first == ours; });
-    if (!taken) out.pairs.emplace_back(ours, theirs);
+    if (!taken) out.pairs.emplace_back(ours, pair.first);
   }
   return out;
 }

@@ -10,12 +10,16 @@
 //   the OFFSET restate it (MotionBuilder-style exports), other values are added to it. If they change over
 //   the clip (a stretching bone) the file is rejected.
 // Numbers are parsed with std::from_chars, so the process locale (a comma decimal separator) never matters.
+// Lengths, once scaled to metres, must lie within kMaxLength and the frame time within [kMinFrameTime,
+// kMaxFrameTime]: larger numbers are finite in the file's doubles but not in our floats (an OFFSET of 1e39
+// read as infinity), and no capture is kilometres across or filmed at a megahertz.
 #include "engine/motion/bvh.h"
 
 #include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <glm/gtc/quaternion.hpp>
 #include <string_view>
 #include <system_error>
@@ -26,6 +30,9 @@
 
 namespace prep {
 namespace {
+
+constexpr double kMaxLength = 1e6;  // metres
+constexpr double kMinFrameTime = 1e-5, kMaxFrameTime = 1e4;  // seconds
 
 enum class Channel { Xpos, Ypos, Zpos, Xrot, Yrot, Zrot };
 
@@ -183,10 +190,29 @@ class Parser {
     if (t.text != word) fail(t.line, "expected '" + std::string(word) + "' " + context + ", found '" + std::string(t.text) + "'");
   }
 
+  static std::string short_number(double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", v);
+    return text;
+  }
+
+  // A position or offset in metres: refused if its size is past kMaxLength.
+  void check_length(const glm::dvec3& metres, int line, const std::string& what) const {
+    for (int k = 0; k < 3; ++k)
+      if (!(std::abs(metres[k]) <= kMaxLength))
+        fail(line, what + " is " + short_number(metres[k]) + " m after unit scaling: more than the 1e6 m a length may be");
+  }
+
   glm::vec3 offset_vector() {
     glm::dvec3 v;
-    for (int k = 0; k < 3; ++k) v[k] = number(lex_.next(), "an OFFSET coordinate");
+    int line = 0;
+    for (int k = 0; k < 3; ++k) {
+      const Token t = lex_.next();
+      v[k] = number(t, "an OFFSET coordinate");
+      line = t.line;
+    }
     last_offset_ = v * static_cast<double>(options_.unit_scale);
+    check_length(last_offset_, line, "the OFFSET");
     return glm::vec3(last_offset_);
   }
 
@@ -339,6 +365,8 @@ class Parser {
       fail(line.number, "expected 'Frame Time: seconds', found '" + std::string(line.words[0]) + "'");
     const double frame_time = number({w[2], line.number}, "the frame time in seconds");
     if (!(frame_time > 0)) fail(line.number, "frame time must be positive, found '" + std::string(w[2]) + "'");
+    if (frame_time < kMinFrameTime || frame_time > kMaxFrameTime)
+      fail(line.number, "frame time '" + std::string(w[2]) + "' is outside 1e-05 to 10000 seconds");
     clip.fps = static_cast<float>(1.0 / frame_time);
 
     // Never trust the declared count for memory: each value takes at least two bytes ("0 ").
@@ -380,7 +408,9 @@ class Parser {
         }
         pose.rotations[static_cast<size_t>(j)] = glm::quat(glm::normalize(q));
         if (j == 0) {
-          pose.root_position = glm::vec3(root_offset_ + translation * scale);
+          const glm::dvec3 root = root_offset_ + translation * scale;
+          check_length(root, line.number, "the root position of frame " + std::to_string(clip.frames.size()));
+          pose.root_position = glm::vec3(root);
         } else if (joint_translates[static_cast<size_t>(j)]) {
           glm::dvec3& first = joint_translation[static_cast<size_t>(j)];
           if (clip.frames.empty()) {
@@ -409,7 +439,11 @@ class Parser {
       const glm::dvec3 value = joint_translation[static_cast<size_t>(j)];
       const double tol = 1e-4 * std::max({1.0, glm::length(offset), glm::length(value)});
       const bool restates = glm::length(value - offset) <= tol;
-      if (!restates) joint.offset = glm::vec3((offset + value) * scale);
+      if (!restates) {
+        check_length((offset + value) * scale, parsed_[static_cast<size_t>(j)].line,
+                     "the OFFSET of joint '" + joint.name + "' plus its position channels");
+        joint.offset = glm::vec3((offset + value) * scale);
+      }
       if (options_.warnings)
         options_.warnings->push_back(source_ + ":" + std::to_string(parsed_[static_cast<size_t>(j)].line) +
                                      ": constant position channels of joint '" + joint.name + "' " +

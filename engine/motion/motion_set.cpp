@@ -59,6 +59,8 @@ class ManifestReader {
       std::string what = e.what();
       const size_t colon = what.find("parse error");
       throw InputError(path_, line, "invalid JSON: " + (colon == std::string::npos ? what : what.substr(colon)));
+    } catch (const json::exception& e) {  // a number past a double's range (1e400)
+      throw InputError(path_, std::string("invalid JSON: ") + e.what());
     }
   }
 
@@ -267,8 +269,12 @@ void finalize_motion_set(MotionSet& set, const Params& params) {
 }
 
 MotionSet load_motion_set(const std::string& manifest_path, const Params& params) {
+  return parse_motion_set(read_file(manifest_path), manifest_path, params);
+}
+
+MotionSet parse_motion_set(const std::string& text, const std::string& manifest_path, const Params& params) {
   const ManifestReader reader(manifest_path);
-  const json root = reader.parse(read_file(manifest_path));
+  const json root = reader.parse(text);
   reader.only_fields(root, {}, {"name", "folder", "unit_scale", "units", "skip_first_frame", "reference", "floor",
                                 "description", "clips"});
   MotionSet set;

@@ -75,6 +75,8 @@ struct MotionSet {
 // over a clip, steadily); a clip shorter than 1.5 windows gets one constant floor.
 // Unknown fields and wrong types are errors naming the manifest and the field.
 MotionSet load_motion_set(const std::string& manifest_path, const Params& params);
+// The same from the manifest's text; `manifest_path` names it in errors and locates a relative "folder".
+MotionSet parse_motion_set(const std::string& text, const std::string& manifest_path, const Params& params);
 
 // The floor rule "auto" above: the floor's height under each frame of a clip (in its own coordinates).
 std::vector<float> estimate_floor_heights(const Clip& clip, const BodyMap& body);

@@ -1,10 +1,12 @@
 #include "engine/params/params.h"
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <map>
 #include <sstream>
-
 #include <nlohmann/json.hpp>
+#include <type_traits>
 
 #include "engine/util/error.h"
 #include "engine/util/files.h"
@@ -77,6 +79,35 @@ template <class S> json section_to_json(S& s) {
   return j;
 }
 
+// What nlohmann's conversion lets through silently: a number past a float's range (1e39 becomes infinity,
+// which params_to_json then writes as null), a fraction or an out-of-range integer in an integer field
+// (truncated, wrapped, or undefined behaviour for a float past the integer's range). Each returns why the
+// value cannot be read as the file says, or "": integer_problem before the conversion, float_problem after.
+template <class T> std::string integer_problem(const json& j) {
+  if constexpr (std::is_integral_v<T> && !std::is_same_v<T, bool>) {
+    if (!j.is_number()) return "";  // the conversion reports the wrong type
+    if (!j.is_number_integer()) return "must be an integer";
+    const bool fits = j.is_number_unsigned()
+                          ? j.get<std::uint64_t>() <= static_cast<std::uint64_t>(std::numeric_limits<T>::max())
+                          : j.get<std::int64_t>() >= static_cast<std::int64_t>(std::numeric_limits<T>::min()) &&
+                                (std::is_unsigned_v<T> ||
+                                 j.get<std::int64_t>() <= static_cast<std::int64_t>(std::numeric_limits<T>::max()));
+    if (!fits) return "is out of range for this field (" + std::to_string(std::numeric_limits<T>::min()) + " to " +
+                      std::to_string(std::numeric_limits<T>::max()) + ")";
+  }
+  return "";
+}
+
+template <class T> std::string float_problem(const T& value) {
+  if constexpr (std::is_floating_point_v<T>) {
+    if (!std::isfinite(value)) return "is not a finite number within float range";
+  } else if constexpr (std::is_same_v<T, std::map<std::string, float>>) {
+    for (const auto& [key, v] : value)
+      if (!std::isfinite(v)) return "has '" + key + "', which is not a finite number within float range";
+  }
+  return "";
+}
+
 template <class S> void section_from_json(const json& j, S& s, const std::string& file, const std::string& where) {
   if (!j.is_object()) throw InputError(file, "'" + where + "' must be an object");
   for (auto it = j.begin(); it != j.end(); ++it) {
@@ -84,12 +115,18 @@ template <class S> void section_from_json(const json& j, S& s, const std::string
     fields(s, [&](const char* name, auto& value) {
       if (it.key() != name) return;
       known = true;
+      auto refuse = [&](const std::string& problem) {
+        throw InputError(file, "'" + where + "." + it.key() + "' " + problem + ": " + it.value().dump());
+      };
+      if (const std::string problem = integer_problem<std::decay_t<decltype(value)>>(it.value()); !problem.empty())
+        refuse(problem);
       try {
         it.value().get_to(value);
       } catch (const json::exception&) {
         throw InputError(file, "'" + where + "." + it.key() + "' has the wrong type (" +
                                    std::string(it.value().type_name()) + ")");
       }
+      if (const std::string problem = float_problem(value); !problem.empty()) refuse(problem);
     });
     if (!known) throw InputError(file, "unknown field '" + where + "." + it.key() + "'");
   }
@@ -110,6 +147,8 @@ Params params_from_json(const std::string& text, const std::string& source_name)
     j = json::parse(text);
   } catch (const json::parse_error& e) {
     throw InputError(source_name, "invalid JSON at byte " + std::to_string(e.byte) + ": " + e.what());
+  } catch (const json::exception& e) {  // a number past a double's range (1e400)
+    throw InputError(source_name, std::string("invalid JSON: ") + e.what());
   }
   if (!j.is_object()) throw InputError(source_name, "params must be a JSON object");
   Params p;

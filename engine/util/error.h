@@ -8,6 +8,8 @@ namespace prep {
 
 // Thrown for bad input (a malformed BVH, glTF, manifest, scenario, policy or params file).
 // what() reads "FILE:LINE: message" or "FILE: message" so that a user can go straight to the spot.
+// Control characters in the message (quoted from the file: a field name, a token) are shown as \xNN: a
+// NUL would otherwise end what() there, and an escape sequence would garble a terminal.
 class InputError : public std::runtime_error {
  public:
   InputError(const std::string& file, int line, const std::string& message)
@@ -19,7 +21,24 @@ class InputError : public std::runtime_error {
 
  private:
   static std::string format(const std::string& file, int line, const std::string& message) {
-    return line > 0 ? file + ":" + std::to_string(line) + ": " + message : file + ": " + message;
+    return line > 0 ? file + ":" + std::to_string(line) + ": " + printable(message) : file + ": " + printable(message);
+  }
+  // Newlines and tabs stay (some messages span lines); other control characters become \xNN.
+  static std::string printable(const std::string& text) {
+    static const char* const kHex = "0123456789abcdef";
+    std::string out;
+    out.reserve(text.size());
+    for (const char ch : text) {
+      const auto c = static_cast<unsigned char>(ch);
+      if ((c < 0x20 && c != '\n' && c != '\t') || c == 0x7f) {
+        out += "\\x";
+        out += kHex[c >> 4];
+        out += kHex[c & 15];
+      } else {
+        out += ch;
+      }
+    }
+    return out;
   }
   std::string file_;
   int line_;

@@ -49,10 +49,13 @@ class Reader {
     }
   }
 
+  // Every number of a scenario is metres or degrees: beyond a million either way it is a mistake, and one
+  // past a float's range (1e39) would become infinity.
   float number(const json& value, const std::string& field) const {
     if (!value.is_number()) fail(field, std::string("must be a number, not ") + value.type_name());
     const double v = value.get<double>();
     if (!std::isfinite(v)) fail(field, "must be finite");
+    if (std::abs(v) > 1e6) fail(field, "is " + value.dump() + ": more than a million (metres or degrees) either way");
     return static_cast<float>(v);
   }
 

@@ -65,6 +65,14 @@ TEST_CASE("a truncated policy file is refused, naming the file") {
                        doctest::Contains("p.bin: truncated"), InputError);
 }
 
+TEST_CASE("a policy whose bin counts multiply past 64 bits is refused, naming the file") {
+  // Two distance bin counts of 2^31 - 1 each: the state count overflowed a signed 64-bit product before the
+  // limit was checked (UBSan, found by the policy fuzz target; the file is in its corpus, checksum intact).
+  CHECK_THROWS_WITH_AS(load_policy(test::repo() + "/tests/fuzz/corpus/policy/state_count_overflow.policy", Params{}),
+                       doctest::Contains("state_count_overflow.policy: corrupt quantization: quantization: too many states (more than 2^30"),
+                       InputError);
+}
+
 TEST_CASE("a bit flipped anywhere in a policy file is caught") {
   const Params params = test::small_params();
   const std::string bytes = serialize_policy(sample_policy(params));

@@ -350,6 +350,24 @@ TEST_CASE("malformed BVH files give an error naming the file and the line") {
   }
 }
 
+TEST_CASE("lengths past 1e6 m and frame times past 1e-5..1e4 s give an error naming the file and the line") {
+  // Finite in the file's doubles, but infinite in our floats (found by the BVH fuzz target, whose corpus
+  // keeps these inputs): an OFFSET of 1e39 cm would have been read as infinity and written back as "inf".
+  CHECK_THROWS_WITH_AS(read_bvh(test::repo() + "/tests/fuzz/corpus/bvh/offset_overflow.bvh"),
+                       doctest::Contains("offset_overflow.bvh:8: the OFFSET is 1e+37 m after unit scaling: more than the 1e6 m a length may be"),
+                       InputError);
+  CHECK_THROWS_WITH_AS(read_bvh(test::repo() + "/tests/fuzz/corpus/bvh/frame_time_tiny.bvh"),
+                       doctest::Contains("frame_time_tiny.bvh:18: frame time '1e-300' is outside 1e-05 to 10000 seconds"),
+                       InputError);
+  CHECK_THROWS_WITH_AS(parse_bvh(replace_line(kSmall, 20, "1.5 1e300 0 0 0 0 45 0 0"), "far.bvh"),
+                       doctest::Contains("far.bvh:20: the root position of frame 1 is"), InputError);
+  CHECK_THROWS_WITH_AS(parse_bvh(replace_line(kSmall, 18, "Frame Time: 1e5"), "slow.bvh"),
+                       doctest::Contains("slow.bvh:18: frame time '1e5' is outside"), InputError);
+  // The limits leave real files alone: a kilometre in centimetres, 1000 fps.
+  CHECK(parse_bvh(replace_line(replace_line(kSmall, 20, "1.5 100000 0 0 0 0 45 0 0"), 18, "Frame Time: 0.001"), "ok.bvh")
+            .frames[1].root_position.y == doctest::Approx(1000.0f));
+}
+
 TEST_CASE("constant position channels on a non-root joint fold into its offset") {
   std::string text = replace_line(kSmall, 9, "    CHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation");
   SUBCASE("values that restate the OFFSET (MotionBuilder style)") {

@@ -259,6 +259,15 @@ TEST_CASE("bad manifests give errors naming the manifest and the field") {
   auto load = [](const std::string& file, const std::string& text) { return load_motion_set(write_manifest(file, text), Params{}); };
   CHECK_THROWS_WITH_AS(load("bad_json.json", "{\n\"name\": \"x\",\n\"clips\": [\n}"), doctest::Contains("bad_json.json:4: invalid JSON"),
                        InputError);
+  // A number past a double's range is nlohmann's out_of_range, not a parse_error: it once escaped as such
+  // (found by the manifest fuzz target; the input is in its corpus).
+  CHECK_THROWS_WITH_AS(load_motion_set(test::repo() + "/tests/fuzz/corpus/manifest/number_overflow.json", Params{}),
+                       doctest::Contains("number_overflow.json: invalid JSON: [json.exception.out_of_range.406] number overflow"),
+                       InputError);
+  // A NUL in a field name ("\u0000clips") ended the message there (found by the manifest fuzz target).
+  CHECK_THROWS_WITH_AS(load_motion_set(test::repo() + "/tests/fuzz/corpus/manifest/nul_in_field_name.json", Params{}),
+                       doctest::Contains("nul_in_field_name.json: \\x00clips: unknown field (expected one of: name, folder"),
+                       InputError);
   CHECK_THROWS_WITH_AS(load("unknown_field.json", cmu31_manifest(walk, ", \"speed\": 2")),
                        doctest::Contains("unknown_field.json: speed: unknown field"), InputError);
   CHECK_THROWS_WITH_AS(load("no_folder.json", "{\"clips\": [" + walk + "]}"), doctest::Contains("no_folder.json: folder: missing"),

@@ -2,6 +2,7 @@
 
 #include "engine/params/params.h"
 #include "engine/util/error.h"
+#include "tests/support/paths.h"
 
 using namespace prep;
 
@@ -42,6 +43,36 @@ TEST_CASE("bad params files are refused with the file and field named") {
   CHECK_THROWS_WITH_AS(params_from_json("{\"balance\": ", "p.json"), doctest::Contains("p.json: invalid JSON"),
                        InputError);
   CHECK_THROWS_AS(params_from_json("[1,2]", "p.json"), InputError);
+}
+
+TEST_CASE("numbers a field's type cannot hold are refused with the file and field named") {
+  // Inputs of the Params fuzz target's corpus (tests/fuzz/corpus/params): nlohmann's conversion would have
+  // turned each silently into infinity, a wrapped or truncated integer, or undefined behaviour.
+  const std::string corpus = test::repo() + "/tests/fuzz/corpus/params/";
+  CHECK_THROWS_WITH_AS(load_params(corpus + "float_overflow.json"),
+                       doctest::Contains("float_overflow.json: 'reward.goal_radius' is not a finite number within float range: 1e+39"),
+                       InputError);
+  CHECK_THROWS_WITH_AS(load_params(corpus + "int_overflow.json"),
+                       doctest::Contains("int_overflow.json: 'quantization.d_g_bins' is out of range for this field (-2147483648 to 2147483647): 2147483648"),
+                       InputError);
+  CHECK_THROWS_WITH_AS(load_params(corpus + "int_fraction.json"),
+                       doctest::Contains("int_fraction.json: 'quantization.alpha_levels' must be an integer: 2.5"), InputError);
+  CHECK_THROWS_WITH_AS(load_params(corpus + "unsigned_negative.json"),
+                       doctest::Contains("unsigned_negative.json: 'sarsa.seed' is out of range for this field"), InputError);
+  CHECK_THROWS_WITH_AS(load_params(corpus + "float_in_integer_field.json"),
+                       doctest::Contains("float_in_integer_field.json: 'sarsa.seed' must be an integer"), InputError);
+  CHECK_THROWS_WITH_AS(load_params(corpus + "override_overflow.json"),
+                       doctest::Contains("override_overflow.json: 'blend.C_override' has 'Hips', which is not a finite number"),
+                       InputError);
+  CHECK_THROWS_WITH_AS(load_params(corpus + "number_overflow.json"),
+                       doctest::Contains("number_overflow.json: invalid JSON: [json.exception.out_of_range.406] number overflow"),
+                       InputError);
+  // The limits are the types': their extremes still load.
+  const Params edge = params_from_json(R"({"quantization": {"d_g_bins": 2147483647}, "sarsa": {"seed": 18446744073709551615},
+                                          "reward": {"goal_radius": 3.4e38}})", "edge.json");
+  CHECK(edge.quantization.d_g_bins == 2147483647);
+  CHECK(edge.sarsa.seed == 18446744073709551615ull);
+  CHECK(edge.reward.goal_radius == doctest::Approx(3.4e38));
 }
 
 TEST_CASE("the policy hash follows what a policy depends on") {

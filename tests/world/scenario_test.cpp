@@ -137,3 +137,15 @@ TEST_CASE("bad scenarios are refused with the file and the field") {
                  "not valid JSON"));
   CHECK_THROWS_AS(load_scenario(test::repo() + "/assets/scenarios/no_such_file.json"), InputError);
 }
+
+TEST_CASE("scenario numbers beyond a million metres or degrees are refused with the file and the field") {
+  // 1e39 is finite as a double but infinite as the float it was stored in, and scenario_json wrote it back as
+  // null (found by the scenario fuzz target; the input is in its corpus).
+  CHECK_THROWS_WITH_AS(load_scenario(test::repo() + "/tests/fuzz/corpus/scenario/far_away.json"),
+                       doctest::Contains("far_away.json: 'characters[0].position[0]' is 1e+39: more than a million (metres or degrees) either way"),
+                       InputError);
+  CHECK(mentions(error_of(R"({"characters": [{"position": [0, 0], "heading": -1e7, "control": "user"}], "goal": [0, 2]})"),
+                 "'characters[0].heading' is -10000000.0: more than a million"));
+  const Scenario edge = parse_scenario(R"({"characters": [{"position": [1e6, -1e6], "control": "user"}], "goal": [0, 2]})", "edge.json");
+  CHECK(edge.characters[0].position.x == 1e6f);
+}

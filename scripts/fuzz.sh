@@ -1,0 +1,51 @@
+#!/usr/bin/env bash
+# Runs one loader's fuzz target (tests/fuzz/README.md) for a while on its seed corpus.
+#   scripts/fuzz.sh TARGET SECONDS [more libFuzzer flags...]
+#   TARGET: bvh, gltf, manifest, scenario, params, policy or retarget
+# Builds build-fuzz/ (clang, libFuzzer + ASan + UBSan) when needed. New inputs go to a scratch corpus
+# outside the repository ($PREP_FUZZ_DIR/TARGET, default /tmp/prep-fuzz/TARGET; kept between runs, so a
+# later run goes on from there); tests/fuzz/corpus/TARGET, the seeds, is only read. A failing input is
+# written to $PREP_FUZZ_DIR/artifacts/. Prints the executions and the coverage at the end.
+set -euo pipefail
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+if (($# < 2)); then
+  echo "usage: scripts/fuzz.sh TARGET SECONDS [libFuzzer flags...]" >&2
+  exit 2
+fi
+target="$1" seconds="$2"
+shift 2
+seeds="$here/tests/fuzz/corpus/$target"
+[ -d "$seeds" ] || { echo "fuzz: no target '$target' (no $seeds)" >&2; exit 2; }
+
+if ! command -v clang++-14 >/dev/null || [ ! -e "$(clang++-14 -print-resource-dir)/lib/linux/libclang_rt.fuzzer-x86_64.a" ]; then
+  echo "fuzz: needs clang-14 with libFuzzer: sudo apt-get install clang-14 libclang-rt-14-dev" >&2
+  exit 2
+fi
+build="${PREP_FUZZ_BUILD:-$here/build-fuzz}"
+if [ ! -f "$build/build.ninja" ]; then
+  cmake -S "$here" -B "$build" -G Ninja -DPREP_FUZZ=ON -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14 \
+    -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" \
+    $(command -v ccache >/dev/null && echo -DCMAKE_CXX_COMPILER_LAUNCHER=ccache) >/dev/null
+fi
+nice -n 10 cmake --build "$build" -j 2 --target "prep_fuzz_$target" | grep -v '^ninja: no work to do' || true
+[ -x "$build/prep_fuzz_$target" ] || { echo "fuzz: build of prep_fuzz_$target failed" >&2; exit 1; }
+
+scratch="${PREP_FUZZ_DIR:-/tmp/prep-fuzz}"
+mkdir -p "$scratch/$target" "$scratch/artifacts"
+flags=(-max_total_time="$seconds" -timeout=2 -rss_limit_mb=2048 -print_final_stats=1
+       -artifact_prefix="$scratch/artifacts/$target-")
+[ -f "$here/tests/fuzz/dict/$target.dict" ] && flags+=(-dict="$here/tests/fuzz/dict/$target.dict")
+log="$scratch/$target.log"
+status=0
+start=$SECONDS
+# The scratch folder comes first: libFuzzer writes what it finds into its first corpus folder.
+nice -n 15 "$build/prep_fuzz_$target" "${flags[@]}" "$@" "$scratch/$target" "$seeds" >"$log" 2>&1 || status=$?
+# The last status line holds the coverage (cov: edges, ft: features); -print_final_stats the executions.
+last="$(grep -aE '#[0-9]+.*cov: ' "$log" | tail -1 || true)"
+execs="$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)"
+echo "fuzz $target: ${execs:-?} executions in $((SECONDS - start)) s; cov $(sed -n 's/.*cov: \([0-9]*\).*/\1/p' <<<"$last") ft $(sed -n 's/.* ft: \([0-9]*\).*/\1/p' <<<"$last") (log: $log)"
+if ((status != 0)); then
+  echo "fuzz $target: FAILED (exit $status); the input is in $scratch/artifacts/:" >&2
+  grep -aE '^(==[0-9]+==ERROR|SUMMARY|fuzz:|.*runtime error|artifact_prefix|Test unit written)' "$log" | head -20 >&2
+  exit 1
+fi
