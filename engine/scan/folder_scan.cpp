@@ -10,6 +10,7 @@
 #include <map>
 #include <memory>
 
+#include <glm/gtc/constants.hpp>
 #include <glm/geometric.hpp>
 
 #include "engine/control/action_effects.h"
@@ -24,7 +25,6 @@ namespace prep {
 namespace {
 
 namespace fs = std::filesystem;
-constexpr float kPi = 3.14159265358979f;
 
 // A standing figure is 1.4-2.1 m tall; the unit that makes the reference skeleton so (closest to 1.75 m).
 struct Unit {
@@ -87,7 +87,7 @@ void scale_clip(Clip& clip, float scale) {
 float mean_rotation_deg(const Pose& pose) {
   float sum = 0.0f;
   for (const glm::quat& q : pose.rotations) sum += 2.0f * std::acos(std::min(1.0f, std::abs(q.w)));
-  return sum / static_cast<float>(std::max<size_t>(1, pose.rotations.size())) * 180.0f / kPi;
+  return sum / static_cast<float>(std::max<size_t>(1, pose.rotations.size())) * 180.0f / glm::pi<float>();
 }
 
 // A converter's reference pose: frame 0 near the rest pose (the joints turned kReferenceFrameDeg on
@@ -139,7 +139,7 @@ float loop_speed_of(const MotionSignals& s, int first, int last) {
 }
 
 float loop_turn_deg_per_s(const MotionSignals& s, int first, int last) {
-  return (s.heading[static_cast<size_t>(last)] - s.heading[static_cast<size_t>(first)]) * 180.0f / kPi /
+  return (s.heading[static_cast<size_t>(last)] - s.heading[static_cast<size_t>(first)]) * 180.0f / glm::pi<float>() /
          std::max(1e-3f, s.seconds(last - first));
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/gtc/constants.hpp>
 #include <glm/geometric.hpp>
 
 #include "engine/motion/kinematics.h"
@@ -10,7 +11,6 @@
 namespace prep {
 namespace {
 
-constexpr float kPi = 3.14159265358979f;
 constexpr float kRateSpanSeconds = 1.0f / 15.0f;  // the span of a central difference
 
 // Facing from the hips: the horizontal normal to the left-to-right hip line, as a yaw about +Y.
@@ -62,8 +62,8 @@ MotionSignals measure_motion(const Clip& clip, const BodyMap& body, const Contac
     float h = hips_heading(at(body.legs[kLeft].hip), at(body.legs[kRight].hip));
     if (f > 0) {
       // Unwrapped: each frame within half a turn of the one before.
-      while (h - previous_heading > kPi) h -= 2.0f * kPi;
-      while (h - previous_heading < -kPi) h += 2.0f * kPi;
+      while (h - previous_heading > glm::pi<float>()) h -= 2.0f * glm::pi<float>();
+      while (h - previous_heading < -glm::pi<float>()) h += 2.0f * glm::pi<float>();
     }
     previous_heading = h;
     s.heading.push_back(h);

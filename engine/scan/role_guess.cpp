@@ -7,12 +7,13 @@
 #include <set>
 #include <vector>
 
+#include <glm/gtc/constants.hpp>
+
 #include "engine/scan/target_timing.h"
 
 namespace prep {
 namespace {
 
-constexpr float kPi = 3.14159265358979f;
 
 std::set<std::string> words_of(const std::string& name) {
   std::set<std::string> words;
@@ -118,10 +119,10 @@ MotionRole role_from_motion(const MotionSignals& s, int first, int last) {
   const std::vector<float> heading = smoothed(s.heading, s.frames_in(0.5f));
   const float turned = heading[static_cast<size_t>(last)] - heading[static_cast<size_t>(first)];
   const float rate = std::abs(turned) / std::max(1e-3f, s.seconds(last - first));
-  if (std::abs(turned) >= 60.0f * kPi / 180.0f && rate >= 15.0f * kPi / 180.0f)
-    return {turned > 0.0f ? Role::TurnLeft : Role::TurnRight, 0.7f, format("turns %.0f degrees at %.1f m/s", turned * 180.0 / kPi, speed)};
+  if (std::abs(turned) >= 60.0f * glm::pi<float>() / 180.0f && rate >= 15.0f * glm::pi<float>() / 180.0f)
+    return {turned > 0.0f ? Role::TurnLeft : Role::TurnRight, 0.7f, format("turns %.0f degrees at %.1f m/s", turned * 180.0 / glm::pi<float>(), speed)};
 
-  return {Role::Walk, 0.8f, format("moves at %.2f m/s, turning %.0f degrees", speed, turned * 180.0 / kPi)};
+  return {Role::Walk, 0.8f, format("moves at %.2f m/s, turning %.0f degrees", speed, turned * 180.0 / glm::pi<float>())};
 }
 
 RoleGuess guess_role(const std::string& file_name, const MotionSignals& s, int first, int last) {

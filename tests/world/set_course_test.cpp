@@ -11,7 +11,7 @@ using namespace prep;
 
 namespace {
 
-ScenarioObject obstacle(ObjectType type, TargetAction action, float z, float height) {
+ScenarioObject set_course_obstacle(ObjectType type, TargetAction action, float z, float height) {
   ScenarioObject o;
   o.type = type;
   o.action = action;
@@ -29,7 +29,7 @@ TEST_CASE("a course on a set: what it has no clip for is left out, a height beyo
   assets.targets[static_cast<size_t>(TargetAction::Crawl)].clip = -1;
 
   Scenario course = load_scenario(test::repo() + "/assets/scenarios/obstacles.json");
-  course.objects.push_back(obstacle(ObjectType::Hurdle, TargetAction::Jump, 16.0f, 0.9f));  // far beyond any jump
+  course.objects.push_back(set_course_obstacle(ObjectType::Hurdle, TargetAction::Jump, 16.0f, 0.9f));  // far beyond any jump
   course.goal.back() = {0.0f, 18.0f};
   const SetCourse fitted = course_for_set(course, assets, "my_set.json");
   CHECK(fitted.scenario.motions == "my_set.json");
