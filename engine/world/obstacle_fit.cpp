@@ -45,6 +45,32 @@ ClipSweep sweep_clip(const MotionSet& set, const BodyVolumes& volumes, int clip,
   return sweep;
 }
 
+BodyReach body_reach(const ClipSweep& sweep, int last_frame) {
+  BodyReach reach;
+  constexpr int kSamples = 5;  // points along each capsule's segment
+  const size_t frames = last_frame < 0 ? sweep.frames.size()
+                                       : std::min(sweep.frames.size(), static_cast<size_t>(std::max(0, last_frame - sweep.first_frame + 1)));
+  for (size_t k = 0; k < frames; ++k)
+    for (const ClipSweep::Segment& s : sweep.frames[k])
+      for (int i = 0; i < kSamples; ++i) {
+        const float u = static_cast<float>(i) / (kSamples - 1);
+        const float z = s.z0 + u * (s.z1 - s.z0) + s.radius, y = s.y0 + u * (s.y1 - s.y0);
+        const int lo = std::max(0, static_cast<int>(std::floor((y - s.radius) / BodyReach::kBand)));
+        const int hi = std::max(lo, static_cast<int>(std::floor((y + s.radius) / BodyReach::kBand)));
+        if (static_cast<size_t>(hi) >= reach.z.size()) reach.z.resize(static_cast<size_t>(hi) + 1, -std::numeric_limits<float>::infinity());
+        for (int b = lo; b <= hi; ++b) reach.z[static_cast<size_t>(b)] = std::max(reach.z[static_cast<size_t>(b)], z);
+      }
+  return reach;
+}
+
+float BodyReach::over(float y0, float y1) const {
+  float farthest = -std::numeric_limits<float>::infinity();
+  const int lo = std::max(0, static_cast<int>(std::floor(y0 / kBand)));
+  const int hi = std::min(static_cast<int>(z.size()) - 1, static_cast<int>(std::floor(y1 / kBand)));
+  for (int b = lo; b <= hi; ++b) farthest = std::max(farthest, z[static_cast<size_t>(b)]);
+  return farthest;
+}
+
 float ObstacleFit::weight(float frame) const {
   if (last < first) return 0.0f;
   float x = 1.0f;

@@ -44,6 +44,19 @@ struct ClipSweep {
 };
 ClipSweep sweep_clip(const MotionSet& set, const BodyVolumes& volumes, int clip, int reference_frame);
 
+// How far along the T_p facing (z of the sweep) the body of a target clip reaches at each height, from T_p
+// up to a last frame, capsule radii included: the room an obstacle crossed needs beyond it before the next
+// one (World::launch_lateral). A body lying low under a bar reaches far at knee height and not at all at
+// head height, so a beam beyond a bar takes less room than a hurdle.
+struct BodyReach {
+  static constexpr float kBand = 0.1f;  // m of height per entry
+  std::vector<float> z;                 // [band]: the farthest z within heights [b, b + 1) * kBand; -inf: none
+  // The farthest z of the body at any height from y0 to y1 (-inf when it has none there).
+  float over(float y0, float y1) const;
+};
+// Frames first_frame..last_frame of the sweep (clip frames; last_frame < 0: to its end).
+BodyReach body_reach(const ClipSweep& sweep, int last_frame);
+
 struct ObstacleFit {
   float lift = 0.0f;        // m: > 0 raises the body over a hurdle, < 0 lowers it under a bar or beam
   float clip_height = 0.0f; // m: the clip's own: the lowest rail it passes under / the highest board it clears

@@ -35,6 +35,9 @@ constexpr float kOpponentHold = 0.5f;  // m short of its launch point at which a
 // (choose_source): a body passing nearer would clip its post, so it is passed through its span instead;
 // farther, it is walked round with room.
 constexpr float kBesideEnd = 0.6f;
+constexpr float kLateralStep = 0.1f;     // m between the places along a span tried for room (launch_lateral)
+constexpr float kBodyHalfWidth = 0.3f;   // m either side of the line a clip crosses along (launch_room_clear)
+constexpr float kRoomMargin = 0.05f;     // m kept between a clip's body and the next obstacle (launch_room_clear)
 
 // The lateral place (along the obstacle's width, from its middle) where the straight way from `from` to `to`
 // crosses the line of an obstacle at `p` turned `heading`; nullopt when it does not cross it.
@@ -49,29 +52,94 @@ std::optional<float> crossing_lateral(glm::vec2 from, glm::vec2 to, glm::vec2 p,
 }  // namespace
 
 // The launch point for an action at an object: where the character stands when the action's clip, entered
-// at T_p, meets the object. Across obstacles (bar, beam, hurdle) the approach is along the obstacle's
-// normal, at the character's own lateral place along it (kept kSpanMargin inside the obstacle's ends); for balls and
-// characters it is along the line from the character to the object.
-glm::vec2 World::launch_point(int index, glm::vec2 object, float object_heading, bool across, TargetAction action,
-                               float half_width) const {
+// at T_p, meets the object. For balls and characters it is along the line from the character to the object.
+glm::vec2 World::launch_point(int index, glm::vec2 object, TargetAction action) const {
   const WorldCharacter& c = characters_[static_cast<size_t>(index)];
-  const TargetMotion& t = assets_->target(action);
-  if (across) {
-    glm::vec2 n = forward_of(object_heading);
-    if (glm::dot(object - c.position, n) < 0.0f) n = -n;  // the approach runs from the character's side
-    const glm::vec2 along = left_of(object_heading);
-    float lateral = glm::dot(c.position - object, along);
-    if (half_width > kSpanMargin) lateral = std::clamp(lateral, kSpanMargin - half_width, half_width - kSpanMargin);
-    // Already nearer to the obstacle than the clip's reach (out of the previous obstacle's clip), the
-    // character is past its launch point: the point is where it stands, so that it goes on to the
-    // obstacle (and enters the clip late) rather than turning back through what it has just crossed.
-    const float before = std::clamp(glm::dot(object - c.position, n), 0.0f, t.reach);
-    return object + lateral * along - before * n;
-  }
   const glm::vec2 d = object - c.position;
   const float len = glm::length(d);
   const glm::vec2 dir = len > 1e-4f ? d / len : forward_of(c.heading);
-  return object - t.reach * dir;
+  return object - assets_->target(action).reach * dir;
+}
+
+// Across obstacles (bar, beam, hurdle) the approach is along the obstacle's normal, at the lateral place
+// launch_lateral chooses.
+glm::vec2 World::launch_point(int index, int obstacle) const {
+  const WorldCharacter& c = characters_[static_cast<size_t>(index)];
+  const WorldObject& o = objects_[static_cast<size_t>(obstacle)];
+  const glm::vec2 object = floor_xz(o.position);
+  glm::vec2 n = forward_of(o.spec.heading);
+  if (glm::dot(object - c.position, n) < 0.0f) n = -n;  // the approach runs from the character's side
+  // Already nearer to the obstacle than the clip's reach (out of the previous obstacle's clip), the
+  // character is past its launch point: the point is where it stands, so that it goes on to the
+  // obstacle (and enters the clip late) rather than turning back through what it has just crossed.
+  const float before = std::clamp(glm::dot(object - c.position, n), 0.0f, assets_->target(o.spec.action).reach);
+  return object + launch_lateral(index, obstacle) * left_of(o.spec.heading) - before * n;
+}
+
+// The character's own lateral place, kept kSpanMargin inside the ends; if the obstacle's clip launched there
+// would run into another obstacle before it may be left (two obstacles close together and at an angle, the
+// gap between them narrowing toward one end), the nearest place along the span that leaves it room. A
+// person lines up where the gap is wide enough to come up in. Where no place has room, the own one.
+float World::launch_lateral(int index, int obstacle) const {
+  const WorldCharacter& c = characters_[static_cast<size_t>(index)];
+  Runtime& rt = *runtime_[static_cast<size_t>(index)];
+  const WorldObject& o = objects_[static_cast<size_t>(obstacle)];
+  const glm::vec2 object = floor_xz(o.position);
+  glm::vec2 n = forward_of(o.spec.heading);
+  const bool from_front = glm::dot(object - c.position, n) >= 0.0f;
+  if (!from_front) n = -n;
+  const float span = std::max(0.5f * o.spec.size.x - kSpanMargin, 0.0f);
+  const float own = std::clamp(glm::dot(c.position - object, left_of(o.spec.heading)), -span, span);
+  const int samples = static_cast<int>(std::floor(2.0f * span / kLateralStep)) + 1;
+  if (rt.room_obstacle != obstacle || rt.room_from_front != from_front) {
+    rt.room_obstacle = obstacle;
+    rt.room_from_front = from_front;
+    rt.room_clear.assign(static_cast<size_t>(samples), true);
+    for (int k = 0; k < samples; ++k)
+      rt.room_clear[static_cast<size_t>(k)] = launch_room_clear(obstacle, o.spec.action, n, -span + static_cast<float>(k) * kLateralStep);
+  }
+  const auto at = [&](int k) { return -span + static_cast<float>(k) * kLateralStep; };
+  const int nearest = std::clamp(static_cast<int>(std::lround((own + span) / kLateralStep)), 0, samples - 1);
+  if (rt.room_clear[static_cast<size_t>(nearest)]) return own;
+  int best = -1;
+  for (int k = 0; k < samples; ++k)
+    if (rt.room_clear[static_cast<size_t>(k)] && (best < 0 || std::fabs(at(k) - own) < std::fabs(at(best) - own))) best = k;
+  return best < 0 ? own : at(best);
+}
+
+// Whether the clip of `action`, launched at the obstacle along `n` at `lateral` from its middle, keeps its
+// body (BodyReach, up to the frame the clip may be left) kRoomMargin short of every other unused across
+// obstacle's solids beyond. The body is as wide as kBodyHalfWidth either side of its line.
+bool World::launch_room_clear(int obstacle, TargetAction action, glm::vec2 n, float lateral) const {
+  const BodyReach& body = assets_->body_reaches[static_cast<size_t>(action)];
+  if (body.z.empty()) return true;
+  const WorldObject& o = objects_[static_cast<size_t>(obstacle)];
+  const float reach = assets_->target(action).reach;
+  const glm::vec2 along = left_of(o.spec.heading);
+  for (size_t k = 0; k < objects_.size(); ++k) {
+    const WorldObject& next = objects_[k];
+    if (static_cast<int>(k) == obstacle || next.used || !is_across(next.spec.type)) continue;
+    const glm::vec2 p2 = floor_xz(next.position), n2 = forward_of(next.spec.heading), along2 = left_of(next.spec.heading);
+    const float cosine = glm::dot(n, n2);
+    if (std::fabs(cosine) < 0.2f) continue;  // all but parallel to the way across: not crossed on it
+    for (const float side : {-kBodyHalfWidth, 0.0f, kBodyHalfWidth}) {
+      // The line the T_p root's facing runs along (z = 0 at the T_p root), and where it meets `next`'s frame.
+      const glm::vec2 root = floor_xz(o.position) + (lateral + side) * along - reach * n;
+      const float z_at_axis = glm::dot(p2 - root, n2) / cosine;
+      const float x_at_axis = glm::dot(root + z_at_axis * n - p2, along2);
+      for (const ObjectSolid& solid : solids_[k]) {
+        if (std::fabs(x_at_axis - solid.centre.x) > 0.5f * solid.extents.x) continue;
+        // The solid's depth (along n2) as a stretch of z, and the body's farthest z at the solid's heights.
+        const float z0 = z_at_axis + (solid.centre.z - 0.5f * solid.extents.z) / cosine;
+        const float z1 = z_at_axis + (solid.centre.z + 0.5f * solid.extents.z) / cosine;
+        const float near = std::min(z0, z1);
+        if (near <= reach) continue;  // on this side of the obstacle crossed: not what the clip runs into
+        const float y0 = solid.centre.y - 0.5f * solid.extents.y, y1 = solid.centre.y + 0.5f * solid.extents.y;
+        if (body.over(y0, y1) + kRoomMargin > near) return false;
+      }
+    }
+  }
+  return true;
 }
 
 // Sec. 7.2: the source of influence. User: the closest opponent still fighting (fight), else the closest
@@ -89,7 +157,7 @@ void World::choose_source(int index) {
     c.source_character = user_;
     c.prepared_for = c.met_with;
     c.source_object_position = u.position;
-    c.source = launch_point(index, u.position, 0.0f, false, c.met_with);
+    c.source = launch_point(index, u.position, c.met_with);
     return;
   }
   if (picked_source_ >= 0) {  // picked by hand (set_source): kept while it can still be acted on
@@ -101,7 +169,7 @@ void World::choose_source(int index) {
         c.source_character = o.character;
         c.prepared_for = opponent.met_with;
         c.source_object_position = opponent.position;
-        c.source = launch_point(index, opponent.position, 0.0f, false, c.prepared_for);
+        c.source = launch_point(index, opponent.position, c.prepared_for);
         return;
       }
     } else if (!o.used && assets_->target(o.spec.action).clip >= 0) {
@@ -109,8 +177,7 @@ void World::choose_source(int index) {
       c.source_object = picked_source_;
       c.prepared_for = o.spec.action;
       c.source_object_position = floor_xz(o.position);
-      c.source = launch_point(index, c.source_object_position, o.spec.heading, is_across(o.spec.type), c.prepared_for,
-                              0.5f * o.spec.size.x);
+      c.source = is_across(o.spec.type) ? launch_point(index, picked_source_) : launch_point(index, c.source_object_position, c.prepared_for);
       return;
     }
     picked_source_ = -1;  // used or defeated: the automatic choice resumes
@@ -129,7 +196,7 @@ void World::choose_source(int index) {
     }
   }
   if (c.has_source) {
-    c.source = launch_point(index, c.source_object_position, 0.0f, false, c.prepared_for);
+    c.source = launch_point(index, c.source_object_position, c.prepared_for);
     return;
   }
   for (int k = 0; k < static_cast<int>(objects_.size()); ++k) {
@@ -171,8 +238,7 @@ void World::choose_source(int index) {
   }
   if (c.has_source) {
     const WorldObject& o = objects_[static_cast<size_t>(c.source_object)];
-    c.source = launch_point(index, c.source_object_position, o.spec.heading, is_across(o.spec.type), c.prepared_for,
-                            0.5f * o.spec.size.x);
+    c.source = is_across(o.spec.type) ? launch_point(index, c.source_object) : launch_point(index, c.source_object_position, c.prepared_for);
   }
 }
 
@@ -191,10 +257,9 @@ World::Approach World::approach(int index) const {
     if (glm::dot(to_object, n) < 0.0f) n = -n;
     const float along = glm::dot(to_object, n);
     a.to_launch = along - t.reach;
-    // Beside the part of the span a launch may start from (launch_point): not there yet, however near.
-    const float half = 0.5f * objects_[static_cast<size_t>(c.source_object)].spec.size.x;
-    const float lateral = std::fabs(glm::dot(c.position - c.source_object_position, left_of(objects_[static_cast<size_t>(c.source_object)].spec.heading)));
-    const float beside = lateral - std::max(half - kSpanMargin, 0.0f) - kSpanTolerance;
+    // Beside the place along the span a launch starts from (launch_lateral): not there yet, however near.
+    const float lateral = glm::dot(c.position - c.source_object_position, left_of(objects_[static_cast<size_t>(c.source_object)].spec.heading));
+    const float beside = std::fabs(lateral - launch_lateral(index, c.source_object)) - kSpanTolerance;
     if (beside > 0.0f) a.to_launch = std::max(a.to_launch, beside);
     a.beside = beside > 0.0f;
     a.ahead = along > 0.0f && glm::dot(fwd, n) >= kCos45;

@@ -282,6 +282,7 @@ WorldAssets make_world_assets(std::shared_ptr<const MotionSet> set, const Params
 
   a.targets.resize(kTargetActionCount);
   a.sweeps.resize(kTargetActionCount);
+  a.body_reaches.resize(kTargetActionCount);
   const BodyVolumes volumes(*set->skeleton);
   for (int k = 0; k < kTargetActionCount; ++k) {
     TargetMotion& t = a.targets[static_cast<size_t>(k)];
@@ -335,6 +336,8 @@ WorldAssets make_world_assets(std::shared_ptr<const MotionSet> set, const Params
         last_entry = std::max(last_entry, near.first - static_cast<int>(std::lround(near.ramp_frames)));
     }
     t.last_entry_frame = last_entry;
+    if (!a.sweeps[static_cast<size_t>(k)].frames.empty())
+      a.body_reaches[static_cast<size_t>(k)] = body_reach(a.sweeps[static_cast<size_t>(k)], t.release_frame);
     for (int f = t.reference_frame; f <= last_entry; ++f)
       t.advance.push_back(glm::dot(floor_xz(mc.clip.frames[static_cast<size_t>(f)].root_position) - origin, forward_of(h)));
   }

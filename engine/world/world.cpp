@@ -327,8 +327,7 @@ bool World::start_target(int index, TargetAction action, int object, int target_
       const size_t k = static_cast<size_t>(entry - t.reference_frame);
       const float clip_distance = t.reach - (k < t.advance.size() ? t.advance[k] : 0.0f);
       const float lateral = glm::dot(c.position - p, side);
-      const float half = std::max(0.0f, 0.5f * o.spec.size.x - kSpanMargin);
-      rt.aim = (glm::dot(p - c.position, n) - clip_distance) * n + (std::clamp(lateral, -half, half) - lateral) * side;
+      rt.aim = (glm::dot(p - c.position, n) - clip_distance) * n + (launch_lateral(index, object) - lateral) * side;
       const float fps = assets_->set->clips[static_cast<size_t>(t.clip)].clip.fps;
       const int reach_frame = rt.fit.last >= rt.fit.first ? rt.fit.first : assets_->set->clips[static_cast<size_t>(t.clip)].target_frame;
       rt.aim_seconds = std::max(0.3f, static_cast<float>(reach_frame - entry) / fps);
@@ -500,7 +499,10 @@ void World::steer_tightly(int index) {
   const bool to_span = turn.rate == 0.0f && max_rate > 0.0f && c.control == Control::User && c.has_source && rt.beside &&
                        !rt.controller->arrived();
   if (steering || to_span) {
-    const float radius = walking_turn_rate_ > 0.0f ? rt.speed / walking_turn_rate_ : 0.0f;
+    // Walking along an obstacle to its launch place, the character turns to it however far it is: the
+    // policy sees the source, not the way along the obstacle, and would walk into it.
+    constexpr float kAlwaysInside = 1e6f;  // m: a turning radius every point lies within
+    const float radius = to_span ? kAlwaysInside : walking_turn_rate_ > 0.0f ? rt.speed / walking_turn_rate_ : 0.0f;
     turn = tight_turn(c.position, c.heading, to_span ? c.source : *goal, radius, max_rate);
   }
   rt.stride_scale += dt / (dt + kStrideTime) * (turn.stride - rt.stride_scale);

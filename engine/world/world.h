@@ -162,6 +162,9 @@ struct WorldAssets {
   std::shared_ptr<const Synthesizer> synthesizer;
   std::vector<TargetMotion> targets;   // indexed by TargetAction
   std::vector<ClipSweep> sweeps;       // indexed by TargetAction: the body over each obstacle clip (obstacle_fit.h)
+  // Indexed by TargetAction: how far each obstacle clip's body reaches beyond T_p by the frame the character
+  // may leave it (its release frame, else its end), by height (obstacle_fit.h).
+  std::vector<BodyReach> body_reaches;
   std::vector<int> core_nodes;         // graph node of each policy core motion (index = policy motion)
   int idle_node = -1;                  // where characters start and stop (the idle core clip, else walk)
   std::shared_ptr<const Policy> policy;
@@ -391,8 +394,14 @@ class World {
   std::optional<glm::vec2> steering_goal(const WorldCharacter& c) const;
   void update_arrival(int index);
   void update_balance(int index);
-  glm::vec2 launch_point(int index, glm::vec2 object, float object_heading, bool across, TargetAction action,
-                         float half_width = std::numeric_limits<float>::infinity()) const;
+  // The launch point at a character or ball (`object` its position), or at the across obstacle objects_[obstacle].
+  glm::vec2 launch_point(int index, glm::vec2 object, TargetAction action) const;
+  glm::vec2 launch_point(int index, int obstacle) const;
+  // The lateral place along an across obstacle's span (m from its middle, along left_of its heading) where
+  // the character launches at it: its own, kept kSpanMargin inside the ends and off the places with too
+  // little room beyond for the clip (launch_room_clear).
+  float launch_lateral(int index, int obstacle) const;
+  bool launch_room_clear(int obstacle, TargetAction action, glm::vec2 n, float lateral) const;
   // The approach to the character's source (set by choose_source): the distance still to go to its launch
   // point along the approach (< 0: past it; infinite without a source) and whether the source lies ahead.
   struct Approach {

@@ -56,6 +56,12 @@ struct World::Runtime {
   bool facing = false;           // the source obstacle is faced closely enough to arrive at (Approach)
   bool square = false;           // ... and to launch at (Approach)
   bool beside = false;           // beside the span's launch part (Approach): no arrival yet
+  // The places along the source obstacle's span that leave its clip room before the next obstacle
+  // (World::launch_lateral), sampled every kLateralStep from the span's launch part's one end; kept while
+  // the source and the side it is approached from stay the same.
+  int room_obstacle = -1;
+  bool room_from_front = false;
+  std::vector<bool> room_clear;
   std::vector<glm::vec3> positions, centroids;
   std::vector<glm::quat> rotations;
   std::vector<PlacedCapsule> capsules;  // the body this frame (World::keep_clear_of_obstacles)
