@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The README's test command: set up, build, run every test; then the same under AddressSanitizer and
-# UndefinedBehaviorSanitizer in a second build directory.
+# UndefinedBehaviorSanitizer in a second build directory; then a short libFuzzer run of every loader.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 jobs="$(nproc 2>/dev/null || echo 2)"
@@ -10,12 +10,11 @@ jobs="$(nproc 2>/dev/null || echo 2)"
 # 91 s in batches of 8, 86 s as one; the demo library 60 s in batches of 8, 50 s as one.
 unity=(-DCMAKE_UNITY_BUILD=ON -DCMAKE_UNITY_BUILD_BATCH_SIZE=0)
 
-# Both ctest runs include the fuzz corpora (label fuzz): tests/fuzz/CMakeLists.txt builds each fuzz target
-# as a replay runner and runs it on every seed and regression input. Measured here (2 cores, one fuzzer
-# running beside it): 18 s to compile and link the seven runners in this tree, 24 s in the sanitizer tree,
-# under a second to run them in each, so about 45 s in all. A libFuzzer smoke run is left out: the clang
-# fuzz tree alone took 3 min 7 s to build (4 min of CPU), past the 3 minutes this file may add to CI;
-# scripts/fuzz.sh runs the fuzzers (tests/fuzz/README.md).
+# The fuzz corpora (tests/fuzz/README.md): the normal tree builds each fuzz target as a replay runner and
+# ctest runs it on every seed and regression input (label fuzz). The sanitizer tree does not: the libFuzzer
+# smoke run at the end runs the same inputs under the same sanitizers, and fuzzes a little beyond them.
+# clang and its libFuzzer runtime are installed for that run.
+export PREP_EXTRA_PACKAGES="clang-14 libclang-rt-14-dev ${PREP_EXTRA_PACKAGES:-}"
 "$here/scripts/setup.sh" "$here/build" "${unity[@]}"
 (cd "$here/build" && ctest --output-on-failure -j "$jobs")
 
@@ -24,6 +23,14 @@ echo "prep: tests again under AddressSanitizer + UndefinedBehaviorSanitizer"
 # the sanitizer tree's compile time is most of CI. engine/world/world.cpp takes 13 s at -O1 -g1, 22 s at
 # -O2 -g1, and full -g about doubled it again (measured here, one file at a time).
 "$here/scripts/setup.sh" "$here/build-asan" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
-  -DPREP_SANITIZE=ON -DPREP_BUILD_BENCH=OFF -DPREP_BUILD_CLI=OFF "${unity[@]}"
+  -DPREP_SANITIZE=ON -DPREP_BUILD_BENCH=OFF -DPREP_BUILD_CLI=OFF -DPREP_FUZZ_REPLAY=OFF "${unity[@]}"
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+# Tests labelled slow (a minute of the demo under stress, 50 random courses) run in the normal tree only:
+# under the sanitizers they would take over two minutes, and the shorter tests cover the same code there.
 (cd "$here/build-asan" && ctest --output-on-failure -j "$jobs" -LE slow)
+
+echo "prep: fuzz smoke run: every loader's libFuzzer target for 10 s under AddressSanitizer + UndefinedBehaviorSanitizer"
+# Measured on this 2-core machine: the -O0 fuzz tree builds in about 50 s (90 s of CPU), and the seven
+# targets, two at a time, take 40 s.
+unset ASAN_OPTIONS UBSAN_OPTIONS  # libFuzzer sets its own
+"$here/scripts/fuzz.sh" --smoke 10

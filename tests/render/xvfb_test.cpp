@@ -84,7 +84,9 @@ TEST_CASE("windowed demo under Xvfb: a held key steers the goal, the window show
   CHECK(right_panel.classes[PixelClass::Sky] < right_panel.total / 100);
 }
 
-TEST_CASE("windowed demo under Xvfb: 60 s of live edits under stress, a broken Params file named and the old values kept") {
+// Label "slow": the sanitizer tree leaves it out (scripts/test.sh); the first test above runs the window there.
+TEST_CASE("windowed demo under Xvfb: 60 s of live edits under stress with a broken Params file named and the old values kept" *
+          doctest::test_suite("slow")) {
   const std::string build = build_dir();
   if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0 || build.empty() ||
       !std::filesystem::exists(build + "/prep-demo")) {
