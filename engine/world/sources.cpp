@@ -37,7 +37,7 @@ constexpr float kOpponentHold = 0.5f;  // m short of its launch point at which a
 constexpr float kBesideEnd = 0.6f;
 constexpr float kLateralStep = 0.1f;     // m between the places along a span tried for room (launch_lateral)
 constexpr float kBodyHalfWidth = 0.3f;   // m either side of the line a clip crosses along (launch_room_clear)
-constexpr float kRoomMargin = 0.05f;     // m kept between a clip's body and the next obstacle (launch_room_clear)
+constexpr float kRoomMargin = 0.05f;     // m kept between a clip's body and the next obstacle (launch_room_short)
 
 // The lateral place (along the obstacle's width, from its middle) where the straight way from `from` to `to`
 // crosses the line of an obstacle at `p` turned `heading`; nullopt when it does not cross it.
@@ -79,7 +79,8 @@ glm::vec2 World::launch_point(int index, int obstacle) const {
 // The character's own lateral place, kept kSpanMargin inside the ends; if the obstacle's clip launched there
 // would run into another obstacle before it may be left (two obstacles close together and at an angle, the
 // gap between them narrowing toward one end), the nearest place along the span that leaves it room. A
-// person lines up where the gap is wide enough to come up in. Where no place has room, the own one.
+// person lines up where the gap is wide enough to come up in. Where no place has room, the one with the
+// most.
 float World::launch_lateral(int index, int obstacle) const {
   const WorldCharacter& c = characters_[static_cast<size_t>(index)];
   Runtime& rt = *runtime_[static_cast<size_t>(index)];
@@ -91,28 +92,32 @@ float World::launch_lateral(int index, int obstacle) const {
   const float span = std::max(0.5f * o.spec.size.x - kSpanMargin, 0.0f);
   const float own = std::clamp(glm::dot(c.position - object, left_of(o.spec.heading)), -span, span);
   const int samples = static_cast<int>(std::floor(2.0f * span / kLateralStep)) + 1;
+  const auto at = [&](int k) { return -span + static_cast<float>(k) * kLateralStep; };
   if (rt.room_obstacle != obstacle || rt.room_from_front != from_front) {
     rt.room_obstacle = obstacle;
     rt.room_from_front = from_front;
-    rt.room_clear.assign(static_cast<size_t>(samples), true);
-    for (int k = 0; k < samples; ++k)
-      rt.room_clear[static_cast<size_t>(k)] = launch_room_clear(obstacle, o.spec.action, n, -span + static_cast<float>(k) * kLateralStep);
+    rt.room_short.resize(static_cast<size_t>(samples));
+    for (int k = 0; k < samples; ++k) rt.room_short[static_cast<size_t>(k)] = launch_room_short(obstacle, o.spec.action, n, at(k));
   }
-  const auto at = [&](int k) { return -span + static_cast<float>(k) * kLateralStep; };
   const int nearest = std::clamp(static_cast<int>(std::lround((own + span) / kLateralStep)), 0, samples - 1);
-  if (rt.room_clear[static_cast<size_t>(nearest)]) return own;
-  int best = -1;
-  for (int k = 0; k < samples; ++k)
-    if (rt.room_clear[static_cast<size_t>(k)] && (best < 0 || std::fabs(at(k) - own) < std::fabs(at(best) - own))) best = k;
-  return best < 0 ? own : at(best);
+  if (rt.room_short[static_cast<size_t>(nearest)] <= 0.0f) return own;
+  int best = nearest;
+  for (int k = 0; k < samples; ++k) {
+    const float shortfall = std::max(rt.room_short[static_cast<size_t>(k)], 0.0f);
+    const float best_shortfall = std::max(rt.room_short[static_cast<size_t>(best)], 0.0f);
+    if (shortfall < best_shortfall || (shortfall == best_shortfall && std::fabs(at(k) - own) < std::fabs(at(best) - own))) best = k;
+  }
+  return at(best);
 }
 
-// Whether the clip of `action`, launched at the obstacle along `n` at `lateral` from its middle, keeps its
-// body (BodyReach, up to the frame the clip may be left) kRoomMargin short of every other unused across
-// obstacle's solids beyond. The body is as wide as kBodyHalfWidth either side of its line.
-bool World::launch_room_clear(int obstacle, TargetAction action, glm::vec2 n, float lateral) const {
+// How much room (m) the clip of `action`, launched at the obstacle along `n` at `lateral` from its middle,
+// lacks before the solids of the other unused across obstacles beyond: its body (BodyReach, up to the frame
+// the clip may be left, as wide as kBodyHalfWidth either side of its line) comes within kRoomMargin of one
+// by this much. <= 0: it has room.
+float World::launch_room_short(int obstacle, TargetAction action, glm::vec2 n, float lateral) const {
+  float shortfall = -std::numeric_limits<float>::infinity();
   const BodyReach& body = assets_->body_reaches[static_cast<size_t>(action)];
-  if (body.z.empty()) return true;
+  if (body.z.empty()) return shortfall;
   const WorldObject& o = objects_[static_cast<size_t>(obstacle)];
   const float reach = assets_->target(action).reach;
   const glm::vec2 along = left_of(o.spec.heading);
@@ -135,11 +140,11 @@ bool World::launch_room_clear(int obstacle, TargetAction action, glm::vec2 n, fl
         const float near = std::min(z0, z1);
         if (near <= reach) continue;  // on this side of the obstacle crossed: not what the clip runs into
         const float y0 = solid.centre.y - 0.5f * solid.extents.y, y1 = solid.centre.y + 0.5f * solid.extents.y;
-        if (body.over(y0, y1) + kRoomMargin > near) return false;
+        shortfall = std::max(shortfall, body.over(y0, y1) + kRoomMargin - near);
       }
     }
   }
-  return true;
+  return shortfall;
 }
 
 // Sec. 7.2: the source of influence. User: the closest opponent still fighting (fight), else the closest

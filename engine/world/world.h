@@ -399,9 +399,9 @@ class World {
   glm::vec2 launch_point(int index, int obstacle) const;
   // The lateral place along an across obstacle's span (m from its middle, along left_of its heading) where
   // the character launches at it: its own, kept kSpanMargin inside the ends and off the places with too
-  // little room beyond for the clip (launch_room_clear).
+  // little room beyond for the clip (launch_room_short).
   float launch_lateral(int index, int obstacle) const;
-  bool launch_room_clear(int obstacle, TargetAction action, glm::vec2 n, float lateral) const;
+  float launch_room_short(int obstacle, TargetAction action, glm::vec2 n, float lateral) const;
   // The approach to the character's source (set by choose_source): the distance still to go to its launch
   // point along the approach (< 0: past it; infinite without a source) and whether the source lies ahead.
   struct Approach {

@@ -61,7 +61,7 @@ struct World::Runtime {
   // the source and the side it is approached from stay the same.
   int room_obstacle = -1;
   bool room_from_front = false;
-  std::vector<bool> room_clear;
+  std::vector<float> room_short;  // m of room each place lacks (<= 0: enough)
   std::vector<glm::vec3> positions, centroids;
   std::vector<glm::quat> rotations;
   std::vector<PlacedCapsule> capsules;  // the body this frame (World::keep_clear_of_obstacles)
