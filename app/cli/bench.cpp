@@ -110,6 +110,8 @@ void run(const Options& o) {
                           {"threads", c.threads},
                           {"frames", c.frames},
                           {"ms_per_frame", c.ms_per_frame},
+                          {"median_ms_per_frame", c.median_ms_per_frame},
+                          {"p99_ms_per_frame", c.p99_ms_per_frame},
                           {"max_ms_per_frame", c.max_ms_per_frame},
                           {"cpu_ms_per_frame", c.cpu_ms_per_frame},
                           {"us_per_character_frame", 1000.0 * c.ms_per_frame / c.characters},
@@ -152,9 +154,10 @@ void run(const Options& o) {
     // only for large crowds.
     char memory[48] = "";
     if (c["characters"].get<int>() >= 1000) std::snprintf(memory, sizeof memory, "; %.0f KB each", c["kb_per_character"].get<double>());
-    std::printf("| crowd of %d (controller + full synthesis, %d threads; balance ran in %.0f%% of frames) | %.2f ms per frame (CPU %.2f per core; max %.2f; %.1f us per character%s) | %s |\n",
+    std::printf("| crowd of %d (controller + full synthesis, %d threads; balance ran in %.0f%% of frames) | %.2f ms per frame (CPU %.2f per core; median %.2f, 99th percentile %.2f, worst %.2f; %.1f us per character%s) | %s |\n",
                 c["characters"].get<int>(), c["threads"].get<int>(), 100.0 * c["balanced_fraction"].get<double>(),
-                c["ms_per_frame"].get<double>(), c["cpu_ms_per_frame"].get<double>(), c["max_ms_per_frame"].get<double>(),
+                c["ms_per_frame"].get<double>(), c["cpu_ms_per_frame"].get<double>(), c["median_ms_per_frame"].get<double>(),
+                c["p99_ms_per_frame"].get<double>(), c["max_ms_per_frame"].get<double>(),
                 c["us_per_character_frame"].get<double>(),
                 memory,
                 c["characters"].get<int>() == kCrowdTargetCharacters ? "<= 16.7 ms" : "");

@@ -8,11 +8,12 @@
 #include <cmath>
 #include <condition_variable>
 #include <cstdio>
+#include <ctime>
 #include <functional>
 #include <mutex>
+#include <numeric>
 #include <random>
 #include <thread>
-#include <ctime>
 
 #include "engine/control/action_effects.h"
 #include "engine/control/environment.h"
@@ -235,21 +236,30 @@ CrowdBenchmark benchmark_crowd(const Scenario& scenario, std::shared_ptr<const W
     }
   };
   for (int f = 0; f < warmup; ++f) workers.run([&](int b) { step_block(b, false); });
-  double total = 0.0, worst = 0.0;
+  std::vector<double> frame_ms;
+  frame_ms.reserve(static_cast<size_t>(std::max(frames, 0)));
   const double cpu0 = cpu_ms(CLOCK_PROCESS_CPUTIME_ID);
   for (int f = 0; f < frames; ++f) {
     const auto t0 = Clock::now();
     workers.run([&](int b) { step_block(b, true); });
-    const double ms = ms_since(t0);
-    total += ms;
-    worst = std::max(worst, ms);
+    frame_ms.push_back(ms_since(t0));
   }
+  const double total = std::accumulate(frame_ms.begin(), frame_ms.end(), 0.0);
+  std::sort(frame_ms.begin(), frame_ms.end());
+  // Nearest rank: the smallest frame time that at least q of the frames do not exceed.
+  const auto quantile = [&](double q) {
+    if (frame_ms.empty()) return 0.0;
+    const size_t rank = static_cast<size_t>(std::ceil(q * static_cast<double>(frame_ms.size())));
+    return frame_ms[std::clamp<size_t>(rank, 1, frame_ms.size()) - 1];
+  };
   CrowdBenchmark b;
   b.characters = characters;
   b.threads = threads;
   b.frames = frames;
   b.ms_per_frame = frames > 0 ? total / frames : 0.0;
-  b.max_ms_per_frame = worst;
+  b.median_ms_per_frame = quantile(0.5);
+  b.p99_ms_per_frame = quantile(0.99);
+  b.max_ms_per_frame = frame_ms.empty() ? 0.0 : frame_ms.back();
   b.cpu_ms_per_frame = frames > 0 ? (cpu_ms(CLOCK_PROCESS_CPUTIME_ID) - cpu0) / frames / threads : 0.0;
   long all = 0, optimized = 0;
   for (size_t t = 0; t < synthesized.size(); ++t) all += synthesized[t], optimized += balanced[t];

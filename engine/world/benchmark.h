@@ -62,6 +62,8 @@ SynthesisBenchmark benchmark_synthesis(const MotionSet& set, const Params& param
 struct CrowdBenchmark {
   int characters = 0, threads = 0, frames = 0;
   double ms_per_frame = 0;            // mean wall clock per frame
+  double median_ms_per_frame = 0;     // the frame-time distribution: median, 99th percentile (nearest rank)
+  double p99_ms_per_frame = 0;
   double max_ms_per_frame = 0;        // the slowest frame
   // The process' CPU time per frame over all threads, divided by the threads: the frame time the cores
   // would give if nothing else ran on them (on a shared machine the wall clock also counts others' work).

@@ -36,6 +36,10 @@ TEST_CASE("the crowd benchmark steps every character of every world, all synthes
   CHECK(c.synthesized_fraction == doctest::Approx(1.0));  // launches are off: nobody plays a target clip
   CHECK(c.ms_per_frame > 0.0);
   CHECK(c.max_ms_per_frame >= c.ms_per_frame);
+  // The frame-time distribution is ordered: median <= 99th percentile <= worst.
+  CHECK(c.median_ms_per_frame > 0.0);
+  CHECK(c.median_ms_per_frame <= c.p99_ms_per_frame);
+  CHECK(c.p99_ms_per_frame <= c.max_ms_per_frame);
   CHECK(benchmark_crowd(s, assets, 1, 2, 3, 0, 3).threads == 1);  // never more threads than characters
 }
 
