@@ -148,7 +148,8 @@ float World::launch_room_short(int obstacle, TargetAction action, glm::vec2 n, f
 }
 
 // Sec. 7.2: the source of influence. User: the closest opponent still fighting (fight), else the closest
-// unused object in the facing direction (within 90 degrees; an across obstacle also within its width).
+// unused object in the facing direction (within 90 degrees; an across obstacle also within its width, and
+// used or not while the way to the goal crosses it).
 // Opponents: the user's character.
 void World::choose_source(int index) {
   WorldCharacter& c = characters_[static_cast<size_t>(index)];
@@ -206,8 +207,14 @@ void World::choose_source(int index) {
   }
   for (int k = 0; k < static_cast<int>(objects_.size()); ++k) {
     const WorldObject& o = objects_[static_cast<size_t>(k)];
-    if (o.used || o.spec.type == ObjectType::Opponent || assets_->target(o.spec.action).clip < 0) continue;
+    if (o.spec.type == ObjectType::Opponent || assets_->target(o.spec.action).clip < 0) continue;
     const glm::vec2 p = floor_xz(o.position), d = p - c.position;
+    // An obstacle crossed once is crossed again when the way on leads back over it (a waypoint reached on
+    // its far side, the goal behind it again, or a crossing that ended on the side it began): a ball
+    // kicked or an opponent beaten is done with.
+    if (o.used && !(is_across(o.spec.type) && !c.goal.empty() &&
+                    glm::dot(c.goal.front() - p, forward_of(o.spec.heading)) * glm::dot(c.position - p, forward_of(o.spec.heading)) < 0.0f))
+      continue;
     // The source of the last tick is kept more loosely (kSourceKeptAngle, kSourceKeptWidth): a character
     // that weaves or turns on its approach does not lose it and find it again past its launch point.
     const bool kept = k == runtime_[static_cast<size_t>(index)]->source_key;

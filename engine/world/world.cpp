@@ -480,7 +480,9 @@ void World::steer_tightly(int index) {
     if (glm::length(d) > 1e-3f && std::fabs(wrap_angle(std::atan2(d.x, d.y) - c.heading)) > kFacingSlack)
       turn.rate = squaring_rate(c.heading, std::atan2(d.x, d.y), max_rate);
   }
-  if (max_rate > 0.0f && c.control == Control::User && c.has_source && c.source_object >= 0 && rt.controller->arrived()) {
+  if (max_rate > 0.0f && c.control == Control::User && c.has_source && c.source_object >= 0 &&
+      (rt.controller->arrived() || (c.source_ahead && !rt.beside && c.to_launch < kSquareAhead &&
+                                    is_across(objects_[static_cast<size_t>(c.source_object)].spec.type)))) {
     const WorldObject& o = objects_[static_cast<size_t>(c.source_object)];
     if (is_across(o.spec.type)) {
       glm::vec2 n = forward_of(o.spec.heading);
