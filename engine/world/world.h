@@ -49,7 +49,9 @@
 // - Bodies kept clear (clearance.h measures it): an obstacle is launched at facing its crossing (the arrival
 //   turns the character; one standing still off square launches, the rest of the turn in the cross-fade),
 //   and the clip is slid onto the obstacle (short of, past or beside its launch point) before the body
-//   reaches it, then fitted to its height (obstacle_fit.h); a kick's wind-up is slid onto the ball; an
+//   reaches it, then fitted to its height (obstacle_fit.h); the launch lines up along the obstacle where
+//   its clip has room before the next obstacle (launch_lateral), and within a metre of the launch point
+//   the character squares up to the crossing already (steering.h); a kick's wind-up is slid onto the ball; an
 //   obstacle the way to the goal crosses near its end is a source, walked along to; a body that gets into
 //   an obstacle anyway is set back out of it (RuntimeParams::keep_clear). Opponents hold short of striking
 //   distance and strike once the user is within their reach; one struck at counters after the strike
@@ -60,7 +62,8 @@
 //   nothing calls for preparation. (One 100 m ahead would share its state with every source beyond the
 //   quantized range, 1.6 m or more ahead, for which the policy has learned to start preparing.)
 // - Objects are used once (a kicked ball rolls away; a punched opponent stops fighting); obstacles behind
-//   the character or already passed stop being sources.
+//   the character or already passed stop being sources, unless the way on leads back over one (a waypoint
+//   on its far side, or a crossing that ended where it began): then it is crossed again.
 // - Opponents: their own controller (the same policy) with the user's character as goal and source
 //   (the point at punch reach in front of it); they arrive and launch by the same rules, at most once per
 //   OpponentRules::cooldown_s. For a source that moves (an opponent for the user, the user for an
