@@ -89,6 +89,15 @@ class ManifestReader {
     return it->get<std::string>();
   }
 
+  // A file or folder name: a string with no control character (a NUL ends a path where the system reads it,
+  // so the name could never be the file meant).
+  std::string path_field(const json& object, const FieldPath& where, const char* key) const {
+    const std::string path = string_field(object, where, key, true);
+    for (const char ch : path)
+      if (static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f) fail(where / key, "a file name with a control character in it");
+    return path;
+  }
+
   std::optional<int> int_field(const json& object, const FieldPath& where, const char* key) const {
     const auto it = object.find(key);
     if (it == object.end()) return std::nullopt;
@@ -281,7 +290,7 @@ MotionSet parse_motion_set(const std::string& text, const std::string& manifest_
   set.manifest_path = manifest_path;
   set.name = reader.string_field(root, {}, "name", false, fs::path(manifest_path).stem().string());
   reader.string_field(root, {}, "description", false);
-  const std::string folder_name = reader.string_field(root, {}, "folder", true);
+  const std::string folder_name = reader.path_field(root, {}, "folder");
   const float unit_scale = reader.unit_scale(root);
   bool skip_default = false;
   if (root.contains("skip_first_frame")) {
@@ -312,7 +321,7 @@ MotionSet parse_motion_set(const std::string& text, const std::string& manifest_
     Entry e;
     e.where = {"clips[" + std::to_string(i) + "]"};
     reader.only_fields(c, e.where, {"name", "file", "role", "frames", "loop", "t_t", "steer_deg_per_s", "floor", "skip_first_frame", "notes"});
-    e.file = reader.string_field(c, e.where, "file", true);
+    e.file = reader.path_field(c, e.where, "file");
     e.name = reader.string_field(c, e.where, "name", false, fs::path(e.file).stem().string());
     e.where = {e.where.text + " (" + e.name + ")"};
     reader.string_field(c, e.where, "notes", false);
@@ -357,7 +366,7 @@ MotionSet parse_motion_set(const std::string& text, const std::string& manifest_
   const fs::path folder = resolve_folder(reader, folder_name, entries.front().file);
   std::string reference_file = entries.front().file;
   if (root.contains("reference")) {
-    reference_file = reader.string_field(root, {}, "reference", true);
+    reference_file = reader.path_field(root, {}, "reference");
     const bool listed = std::any_of(entries.begin(), entries.end(), [&](const Entry& e) { return e.file == reference_file; });
     if (!listed) reader.fail({"reference"}, "'" + reference_file + "' is not the file of any clip");
   }

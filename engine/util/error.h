@@ -8,8 +8,8 @@ namespace prep {
 
 // Thrown for bad input (a malformed BVH, glTF, manifest, scenario, policy or params file).
 // what() reads "FILE:LINE: message" or "FILE: message" so that a user can go straight to the spot.
-// Control characters in the message (quoted from the file: a field name, a token) are shown as \xNN: a
-// NUL would otherwise end what() there, and an escape sequence would garble a terminal.
+// Control characters in the message (quoted from the file: a field name, a token) and in the file's name are
+// shown as \xNN: a NUL would otherwise end what() there, and an escape sequence would garble a terminal.
 class InputError : public std::runtime_error {
  public:
   InputError(const std::string& file, int line, const std::string& message)
@@ -19,11 +19,9 @@ class InputError : public std::runtime_error {
   const std::string& file() const { return file_; }
   int line() const { return line_; }
 
- private:
-  static std::string format(const std::string& file, int line, const std::string& message) {
-    return line > 0 ? file + ":" + std::to_string(line) + ": " + printable(message) : file + ": " + printable(message);
-  }
-  // Newlines and tabs stay (some messages span lines); other control characters become \xNN.
+  // Text as what() shows it: newlines and tabs stay (some messages span lines); other control characters
+  // become \xNN. The file's name is shown so too (a path may hold anything but a NUL, and a name read from
+  // a file may hold even that).
   static std::string printable(const std::string& text) {
     static const char* const kHex = "0123456789abcdef";
     std::string out;
@@ -39,6 +37,12 @@ class InputError : public std::runtime_error {
       }
     }
     return out;
+  }
+
+ private:
+  static std::string format(const std::string& file, int line, const std::string& message) {
+    return line > 0 ? printable(file) + ":" + std::to_string(line) + ": " + printable(message)
+                    : printable(file) + ": " + printable(message);
   }
   std::string file_;
   int line_;

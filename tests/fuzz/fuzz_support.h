@@ -29,7 +29,8 @@ void expect_clean(const std::string& source, Load&& load) {
     load();
   } catch (const InputError& e) {
     const std::string what = e.what();
-    const bool names_file = !e.file().empty() && what.rfind(e.file() + ":", 0) == 0 && what.size() > e.file().size() + 2;
+    const std::string shown = InputError::printable(e.file());  // the file as what() names it
+    const bool names_file = !e.file().empty() && what.rfind(shown + ":", 0) == 0 && what.size() > shown.size() + 2;
     if (!names_file || (!source.empty() && e.file() != source)) {
       std::fprintf(stderr, "fuzz: the error does not name %s: %s\n", source.empty() ? "a file" : source.c_str(), what.c_str());
       std::abort();

@@ -268,6 +268,12 @@ TEST_CASE("bad manifests give errors naming the manifest and the field") {
   CHECK_THROWS_WITH_AS(load_motion_set(test::repo() + "/tests/fuzz/corpus/manifest/nul_in_field_name.json", Params{}),
                        doctest::Contains("nul_in_field_name.json: \\x00clips: unknown field (expected one of: name, folder"),
                        InputError);
+  // A NUL in a clip's file name ("humanoid_t\u0000all.bvh") cut the BVH loader's message at the NUL, so that it
+  // named no file (found by the manifest fuzz target): a file or folder name with a control character is
+  // refused where the manifest gives it.
+  CHECK_THROWS_WITH_AS(load_motion_set(test::repo() + "/tests/fuzz/corpus/manifest/nul_in_file_name.json", Params{}),
+                       doctest::Contains("nul_in_file_name.json: clips[1].file: a file name with a control character in it"),
+                       InputError);
   CHECK_THROWS_WITH_AS(load("unknown_field.json", cmu31_manifest(walk, ", \"speed\": 2")),
                        doctest::Contains("unknown_field.json: speed: unknown field"), InputError);
   CHECK_THROWS_WITH_AS(load("no_folder.json", "{\"clips\": [" + walk + "]}"), doctest::Contains("no_folder.json: folder: missing"),
