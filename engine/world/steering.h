@@ -55,9 +55,11 @@ TightTurn tight_turn(glm::vec2 position, float heading, glm::vec2 goal, float tu
 // obstacle turned 30 degrees it could come in more than 45 degrees off the crossing, where the world did
 // not count the source as ahead, and launched on the point without its arrival.
 constexpr float kSquareTolerance = 2.0f * 3.14159265f / 180;   // rad: left alone within this
-// m: an obstacle's launch point this near and ahead is squared up to before the arrival too. Out of a
-// previous obstacle's clip the next one may lie this near at an angle, and the policy, seeing the launch
-// point within a bearing bin of ahead, may turn the other way.
+// m: an obstacle or a ball whose launch point was already this near and ahead when it became the source is
+// squared up to (or faced) before the arrival too. Out of a previous obstacle's clip the next one may lie
+// this near at an angle, and the policy, seeing the launch point within a bearing bin of ahead, may turn
+// the other way or walk past a ball to the side. (One approached from farther is walked to as the policy
+// steers, and squared up to on arrival.)
 constexpr float kSquareAhead = 1.0f;
 // The yaw rate (rad/s) that squares `heading` up to `crossing_heading`, capped at `max_rate`.
 float squaring_rate(float heading, float crossing_heading, float max_rate);

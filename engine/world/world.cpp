@@ -481,8 +481,7 @@ void World::steer_tightly(int index) {
       turn.rate = squaring_rate(c.heading, std::atan2(d.x, d.y), max_rate);
   }
   if (max_rate > 0.0f && c.control == Control::User && c.has_source && c.source_object >= 0 &&
-      (rt.controller->arrived() || (c.source_ahead && !rt.beside && c.to_launch < kSquareAhead &&
-                                    is_across(objects_[static_cast<size_t>(c.source_object)].spec.type)))) {
+      (rt.controller->arrived() || (c.source_ahead && !rt.beside && !rt.approach_from_far && c.to_launch < kSquareAhead))) {
     const WorldObject& o = objects_[static_cast<size_t>(c.source_object)];
     if (is_across(o.spec.type)) {
       glm::vec2 n = forward_of(o.spec.heading);

@@ -50,8 +50,8 @@
 //   turns the character; one standing still off square launches, the rest of the turn in the cross-fade),
 //   and the clip is slid onto the obstacle (short of, past or beside its launch point) before the body
 //   reaches it, then fitted to its height (obstacle_fit.h); the launch lines up along the obstacle where
-//   its clip has room before the next obstacle (launch_lateral), and within a metre of the launch point
-//   the character squares up to the crossing already (steering.h); a kick's wind-up is slid onto the ball; an
+//   its clip has room before the next obstacle (launch_lateral), and out of a previous clip, within a
+//   metre of the next launch point, the character squares up to it already (steering.h); a kick's wind-up is slid onto the ball; an
 //   obstacle the way to the goal crosses near its end is a source, walked along to; a body that gets into
 //   an obstacle anyway is set back out of it (RuntimeParams::keep_clear). Opponents hold short of striking
 //   distance and strike once the user is within their reach; one struck at counters after the strike
