@@ -100,6 +100,7 @@ float World::launch_lateral(int index, int obstacle) const {
     for (int k = 0; k < samples; ++k) rt.room_short[static_cast<size_t>(k)] = launch_room_short(obstacle, o.spec.action, n, at(k));
   }
   const int nearest = std::clamp(static_cast<int>(std::lround((own + span) / kLateralStep)), 0, samples - 1);
+  rt.room_moved = false;
   if (rt.room_short[static_cast<size_t>(nearest)] <= 0.0f) return own;
   int best = nearest;
   for (int k = 0; k < samples; ++k) {
@@ -107,7 +108,8 @@ float World::launch_lateral(int index, int obstacle) const {
     const float best_shortfall = std::max(rt.room_short[static_cast<size_t>(best)], 0.0f);
     if (shortfall < best_shortfall || (shortfall == best_shortfall && std::fabs(at(k) - own) < std::fabs(at(best) - own))) best = k;
   }
-  return at(best);
+  rt.room_moved = best != nearest;
+  return best == nearest ? own : at(best);
 }
 
 // How much room (m) the clip of `action`, launched at the obstacle along `n` at `lateral` from its middle,
@@ -209,12 +211,17 @@ void World::choose_source(int index) {
     const WorldObject& o = objects_[static_cast<size_t>(k)];
     if (o.spec.type == ObjectType::Opponent || assets_->target(o.spec.action).clip < 0) continue;
     const glm::vec2 p = floor_xz(o.position), d = p - c.position;
-    // An obstacle crossed once is crossed again when the way on leads back over it (a waypoint reached on
-    // its far side, the goal behind it again, or a crossing that ended on the side it began): a ball
-    // kicked or an opponent beaten is done with.
-    if (o.used && !(is_across(o.spec.type) && !c.goal.empty() &&
-                    glm::dot(c.goal.front() - p, forward_of(o.spec.heading)) * glm::dot(c.position - p, forward_of(o.spec.heading)) < 0.0f))
-      continue;
+    // An obstacle crossed is crossed again when the way on leads back over it (a waypoint reached on its far
+    // side): the character stands on the other side from its launch, the goal on the side it came from. A
+    // crossing that ended where it began is not tried again (world.h); a ball kicked or an opponent beaten
+    // is done with.
+    if (o.used) {
+      const float own_side = glm::dot(c.position - p, forward_of(o.spec.heading));
+      const bool crossed = o.launched_from * own_side < 0.0f;
+      if (!(is_across(o.spec.type) && crossed && !c.goal.empty() &&
+            glm::dot(c.goal.front() - p, forward_of(o.spec.heading)) * own_side < 0.0f))
+        continue;
+    }
     // The source of the last tick is kept more loosely (kSourceKeptAngle, kSourceKeptWidth): a character
     // that weaves or turns on its approach does not lose it and find it again past its launch point.
     const bool kept = k == runtime_[static_cast<size_t>(index)]->source_key;

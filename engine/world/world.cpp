@@ -264,7 +264,11 @@ bool World::start_target(int index, TargetAction action, int object, int target_
     r.miss = std::isfinite(c.to_launch) ? c.to_launch : 0.0f;
   }
   launches_.push_back(r);
-  if (object >= 0) objects_[static_cast<size_t>(object)].used = true;
+  if (object >= 0) {
+    WorldObject& o = objects_[static_cast<size_t>(object)];
+    o.used = true;
+    o.launched_from = glm::dot(c.position - floor_xz(o.position), forward_of(o.spec.heading)) >= 0.0f ? 1.0f : -1.0f;
+  }
 
   // Enter the target clip at T_p, where the prepared character stands and faces; then back to walking.
   // Past the launch point of an obstacle, the clip is entered where it has come as far (TargetMotion::advance).
@@ -500,11 +504,12 @@ void World::steer_tightly(int index) {
   const bool to_span = turn.rate == 0.0f && max_rate > 0.0f && c.control == Control::User && c.has_source && rt.beside &&
                        !rt.controller->arrived();
   if (steering || to_span) {
-    // Walking along an obstacle to its launch place, the character turns to it however far it is: the
-    // policy sees the source, not the way along the obstacle, and would walk into it.
-    constexpr float kAlwaysInside = 1e6f;  // m: a turning radius every point lies within
-    const float radius = to_span ? kAlwaysInside : walking_turn_rate_ > 0.0f ? rt.speed / walking_turn_rate_ : 0.0f;
+    const float radius = walking_turn_rate_ > 0.0f ? rt.speed / walking_turn_rate_ : 0.0f;
     turn = tight_turn(c.position, c.heading, to_span ? c.source : *goal, radius, max_rate);
+    // Walking along an obstacle to a launch place chosen for its room (launch_lateral), the character turns
+    // to it however far it is, at its full stride unless the place is inside the turning circle: the policy
+    // sees the source, not the way along the obstacle, and would walk into it.
+    if (to_span && rt.room_moved && turn.rate == 0.0f) turn.rate = squaring_rate(c.heading, std::atan2(c.source.x - c.position.x, c.source.y - c.position.y), max_rate);
   }
   rt.stride_scale += dt / (dt + kStrideTime) * (turn.stride - rt.stride_scale);
   if (rt.reseed) return;  // the stream was just restarted: it has no step of its own yet

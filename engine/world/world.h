@@ -62,8 +62,9 @@
 //   nothing calls for preparation. (One 100 m ahead would share its state with every source beyond the
 //   quantized range, 1.6 m or more ahead, for which the policy has learned to start preparing.)
 // - Objects are used once (a kicked ball rolls away; a punched opponent stops fighting); obstacles behind
-//   the character or already passed stop being sources, unless the way on leads back over one (a waypoint
-//   on its far side, or a crossing that ended where it began): then it is crossed again.
+//   the character or already passed stop being sources, unless the way on leads back over one that was
+//   crossed (a waypoint on its far side): then it is crossed again. A crossing that ended on the side it
+//   began is not tried again: a clip that does not carry the body across would try for ever.
 // - Opponents: their own controller (the same policy) with the user's character as goal and source
 //   (the point at punch reach in front of it); they arrive and launch by the same rules, at most once per
 //   OpponentRules::cooldown_s. For a source that moves (an opponent for the user, the user for an
@@ -219,6 +220,8 @@ struct WorldObject {
   glm::vec3 position{0.0f};   // where it stands now (a kicked ball rolls)
   glm::vec2 velocity{0.0f};   // m/s on the floor (a kicked ball)
   bool used = false;          // its action was launched at it
+  // Across obstacles: the side (+1 along its crossing direction, -1 against) of its last launch.
+  float launched_from = 0.0f;
   int character = -1;         // for opponents: the character it is
 };
 

@@ -62,6 +62,7 @@ struct World::Runtime {
   int room_obstacle = -1;
   bool room_from_front = false;
   std::vector<float> room_short;  // m of room each place lacks (<= 0: enough)
+  bool room_moved = false;        // the launch place is not the character's own for want of room
   std::vector<glm::vec3> positions, centroids;
   std::vector<glm::quat> rotations;
   std::vector<PlacedCapsule> capsules;  // the body this frame (World::keep_clear_of_obstacles)
