@@ -45,16 +45,23 @@ Counts count(const render::Image& image, int x0, int y0, int x1, int y1) {
   return c;
 }
 
+// Whether the windowed demo can run here (xvfb-run and build/prep-demo exist); says why it is skipped if
+// not. Makes the folder the tests write their logs and images to.
+bool windowed_demo_runs(const std::string& build) {
+  if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0 || build.empty() ||
+      !std::filesystem::exists(build + "/prep-demo")) {
+    MESSAGE("skipped: xvfb-run or " << build << "/prep-demo missing");
+    return false;
+  }
+  std::filesystem::create_directories(test::tmp_dir());
+  return true;
+}
+
 }  // namespace
 
 TEST_CASE("windowed demo under Xvfb: a held key steers the goal, the window shows the scene and the panels") {
   const std::string build = build_dir();
-  if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0 || build.empty() ||
-      !std::filesystem::exists(build + "/prep-demo")) {
-    MESSAGE("skipped: xvfb-run or " << build << "/prep-demo missing");
-    return;
-  }
-  std::filesystem::create_directories(test::tmp_dir());
+  if (!windowed_demo_runs(build)) return;
   const std::string png = test::tmp_dir() + "/xvfb_demo.png", log = test::tmp_dir() + "/xvfb_demo.log";
   // Under AddressSanitizer the window's leaks are not checked: GLFW unloads Mesa's GLX driver when it
   // terminates, so LeakSanitizer sees the driver's allocations from an unknown module and cannot be told
@@ -88,12 +95,7 @@ TEST_CASE("windowed demo under Xvfb: a held key steers the goal, the window show
 TEST_CASE("windowed demo under Xvfb: 60 s of live edits under stress with a broken Params file named and the old values kept" *
           doctest::test_suite("slow")) {
   const std::string build = build_dir();
-  if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0 || build.empty() ||
-      !std::filesystem::exists(build + "/prep-demo")) {
-    MESSAGE("skipped: xvfb-run or " << build << "/prep-demo missing");
-    return;
-  }
-  std::filesystem::create_directories(test::tmp_dir());
+  if (!windowed_demo_runs(build)) return;
   const std::string log = test::tmp_dir() + "/xvfb_stress.log";
   // Leaks unchecked for the same reason as above (the window's GLX driver).
   const std::string command = "ASAN_OPTIONS=\"${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0\" timeout 300 xvfb-run -a -s '-screen 0 1280x720x24' '" +
