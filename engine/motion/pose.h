@@ -15,7 +15,7 @@ struct Pose {
   explicit Pose(int joint_count) : rotations(static_cast<size_t>(joint_count), glm::quat(1, 0, 0, 0)) {}
 };
 
-// Interpolates two poses: root position linearly, rotations by slerp on the shorter arc.
+// Interpolates two poses: root position linearly, rotations by slerp on the shorter arc. `out` may be `a` or `b`.
 void interpolate(const Pose& a, const Pose& b, float t, Pose& out);
 
 // Heading (yaw about +Y, radians) of a root rotation: the angle of its forward axis (+Z) on the floor.

@@ -180,12 +180,16 @@ void Synthesizer::step(const SynthesisInput& in, SynthesisState& state, Synthesi
   stage_trajectory(in, state, scratch, out);
   stage_ik(in, state, scratch, out);
   stage_balance(in, state, scratch, out, report);
-  stage_floor(scratch, out);
+  if (in.keep_toes_above_floor) stage_floor(scratch, out);
 }
 
 void Synthesizer::stage_floor(SynthesisScratch& s, Pose& out) const {
   forward_kinematics(*skeleton_, out, s.positions, &s.rotations);
-  keep_toes_above_floor(*skeleton_, body_, out, s.positions, s.rotations);
+  const float root_height = out.root_position.y;
+  // Usually nothing is below the floor and the kinematics stand; else they are taken again.
+  if (keep_toes_above_floor(*skeleton_, body_, out, s.positions, s.rotations) > 0 || out.root_position.y != root_height) {
+    forward_kinematics(*skeleton_, out, s.positions, &s.rotations);
+  }
 }
 
 }  // namespace prep

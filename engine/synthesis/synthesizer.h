@@ -56,6 +56,10 @@ struct SynthesisInput {
   // (e.g. the player re-aligned it) or on the first frame of a moving stream.
   bool has_displacement = false;
   glm::vec3 displacement{0.0f};
+  // step() ends with stage_floor. A caller that changes the pose further (a cross-fade) and then runs
+  // stage_floor itself sets this false, so that the toes are not lifted (and the body's forward kinematics
+  // computed) twice.
+  bool keep_toes_above_floor = true;
 };
 
 struct SynthesisReport {
@@ -112,7 +116,8 @@ class Synthesizer {
   void stage_ik(const SynthesisInput& in, SynthesisState& state, SynthesisScratch& scratch, Pose& out) const;
   void stage_balance(const SynthesisInput& in, SynthesisState& state, SynthesisScratch& scratch, Pose& out,
                      SynthesisReport* report) const;
-  // A toe tip below the floor is pitched up to it (keep_toes_above_floor in foot_ik.h).
+  // A toe tip below the floor is pitched up to it (keep_toes_above_floor in foot_ik.h). On return
+  // scratch.positions / rotations hold the forward kinematics of `out` (every joint), for the caller's COM.
   void stage_floor(SynthesisScratch& scratch, Pose& out) const;
 
  private:

@@ -115,7 +115,7 @@ World::World(const Scenario& scenario, std::shared_ptr<const WorldAssets> assets
   }
   for (size_t i = 0; i < characters_.size(); ++i) {
     characters_[i].pose = runtime_[i]->stream.pose();
-    update_balance(static_cast<int>(i));
+    update_balance(static_cast<int>(i), false);
   }
 }
 
@@ -564,15 +564,17 @@ void World::update_goal(int index) {
 }
 
 // The COM and the support polygon of this tick's pose (Sec. 5.3), for the panels and for evaluation.
-void World::update_balance(int index) {
+void World::update_balance(int index, bool kinematics_in_scratch) {
   WorldCharacter& c = characters_[static_cast<size_t>(index)];
   Runtime& rt = *runtime_[static_cast<size_t>(index)];
   const MotionSet& set = *assets_->set;
-  forward_kinematics(*set.skeleton, c.pose, rt.positions, &rt.rotations);
-  segment_centroids(*set.skeleton, set.mass, rt.positions, rt.rotations, rt.centroids);
+  if (!kinematics_in_scratch) forward_kinematics(*set.skeleton, c.pose, rt.scratch.positions, &rt.scratch.rotations);
+  const std::vector<glm::vec3>& positions = rt.scratch.positions;
+  const std::vector<glm::quat>& rotations = rt.scratch.rotations;
+  segment_centroids(*set.skeleton, set.mass, positions, rotations, rt.centroids);
   c.com = center_of_mass(set.mass, rt.centroids);
   c.contacts = rt.stream.contacts();
-  const FootPoints feet = foot_points(*set.skeleton, set.body, rt.positions, rt.rotations);
+  const FootPoints feet = foot_points(*set.skeleton, set.body, positions, rotations);
   c.support = support_polygon(feet, c.contacts, params_.contacts);
   c.com_in_support = !c.support.empty() && c.support.contains({c.com.x, c.com.z});
 }
@@ -641,7 +643,8 @@ void World::step_character(int index) {
 
   const auto synthesis_start = StageClock::now();
   stage_times_.motion_ms += ms_between(motion_start, synthesis_start);
-  Pose out = synthesizer_->make_pose();
+  Pose& out = rt.out;  // kept between ticks: no allocation per tick
+  out.rotations.resize(static_cast<size_t>(assets_->set->skeleton->size()));
   c.alpha = alpha;
   if (c.in_target) {
     out = rt.stream.pose();
@@ -655,6 +658,7 @@ void World::step_character(int index) {
     in.reference = t.clip >= 0 ? &t.reference : &rt.stream.pose();
     in.alpha = t.clip >= 0 ? alpha : 0.0f;
     in.dt = dt;
+    in.keep_toes_above_floor = false;  // stage_floor follows, after the cross-fade
     if (rt.reseed) {
       // Continue from where the character stands: the synthesizer's root restarts here, with no step.
       rt.synthesis = SynthesisState{};
@@ -671,12 +675,11 @@ void World::step_character(int index) {
   }
   if (rt.fade_left > 0.0f) {
     // Cross-fade from the pose before a switch (launch, return, restart) into the new stream.
-    Pose faded;
     const float w = smoothstep(1.0f - rt.fade_left / rt.fade_total);
-    interpolate(rt.fade_from, out, w, faded);
-    faded.root_position.x = out.root_position.x;
-    faded.root_position.z = out.root_position.z;
-    out = faded;
+    const glm::vec3 root = out.root_position;
+    interpolate(rt.fade_from, out, w, out);
+    out.root_position.x = root.x;
+    out.root_position.z = root.z;
     rt.fade_left -= dt;
   }
   // Whatever made the pose (synthesis, a recorded clip fitted to its obstacle, a cross-fade between two
@@ -691,7 +694,7 @@ void World::step_character(int index) {
   c.heading = heading_of(rt.stream.pose().rotations[0]);
   const auto balance_start = StageClock::now();
   stage_times_.synthesis_ms += ms_between(synthesis_start, balance_start);
-  update_balance(index);
+  update_balance(index, true);
   update_goal(index);
   update_arrival(index);
   try_auto_launch(index);

@@ -399,7 +399,9 @@ class World {
   static bool turning_to_step_aside(const WorldCharacter& c);
   std::optional<glm::vec2> steering_goal(const WorldCharacter& c) const;
   void update_arrival(int index);
-  void update_balance(int index);
+  // The COM and support of characters_[index].pose; kinematics_in_scratch: the runtime's synthesis scratch
+  // already holds that pose's forward kinematics (stage_floor leaves it so).
+  void update_balance(int index, bool kinematics_in_scratch);
   // The launch point at a character or ball (`object` its position), or at the across obstacle objects_[obstacle].
   glm::vec2 launch_point(int index, glm::vec2 object, TargetAction action) const;
   glm::vec2 launch_point(int index, int obstacle) const;

@@ -23,6 +23,7 @@ struct World::Runtime {
   std::unique_ptr<Controller> controller;
   SynthesisState synthesis;
   SynthesisScratch scratch;
+  Pose out;                      // this tick's pose being made (World::step_character)
   float next_decision = 0.0f;
   bool reseed = false;           // the next synthesized frame continues from the current position
   glm::vec3 last_displacement{0.0f};       // the locomotion's last step (m per tick)
