@@ -1,5 +1,7 @@
 #include "engine/synthesis/blending.h"
 
+#include "engine/motion/slerp.h"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -71,30 +73,13 @@ void blend_weights(const BlendCurves& curves, float alpha, float* weights) {
   for (size_t i = 0; i < n; ++i) weights[i] = per_curve[curves.curve_of_joint[i]];
 }
 
-glm::quat blend_rotation(const glm::quat& from, const glm::quat& to, float w) {
-  if (w <= 0.0f) return from;
-  if (w >= 1.0f) return to;
-  glm::quat b = to;
-  float d = glm::dot(from, b);
-  if (d < 0.0f) {  // shorter arc: q and -q are the same rotation
-    b = -b;
-    d = -d;
-  }
-  if (d > 0.9995f) return glm::normalize(from + (b - from) * w);  // nearly equal: lerp is exact enough
-  // slerp = (sin((1 - w) theta) from + sin(w theta) b) / sin theta, with sin((1 - w) theta) expanded as
-  // sin theta cos(w theta) - cos theta sin(w theta): one acos and one sincos per joint.
-  const float theta = std::acos(d);
-  const float s = std::sqrt(1.0f - d * d);
-  const float sw = std::sin(w * theta), cw = std::cos(w * theta);
-  const float to_weight = sw / s;
-  return (cw - d * to_weight) * from + to_weight * b;
-}
+glm::quat blend_rotation(const glm::quat& from, const glm::quat& to, float w) { return slerp_shorter(from, to, w); }
 
 void blend_joint_rotations(const Pose& locomotion, const Pose& reference, const float* weights, Pose& out) {
   const size_t n = locomotion.rotations.size();
-  for (size_t i = 1; i < n; ++i) {
-    out.rotations[i] = blend_rotation(locomotion.rotations[i], reference.rotations[i], weights[i]);  // Eq. 2
-  }
+  if (n < 2) return;
+  // Eq. 2 for every joint but the root (blend_root_rotation), four joints at a time.
+  slerp_shorter(locomotion.rotations.data() + 1, reference.rotations.data() + 1, weights + 1, out.rotations.data() + 1, n - 1);
 }
 
 }  // namespace prep

@@ -36,12 +36,13 @@ float blend_weight(float alpha, float C, float c);
 void blend_weights(const BlendCurves& curves, float alpha, float* weights);
 
 // Eq. 2 for one joint. The paper interpolates Euler angles linearly; we slerp quaternions on the shorter
-// arc instead, which is the same blend without gimbal problems or order dependence. Exact at the ends:
-// w <= 0 returns `from`, w >= 1 returns `to` bit for bit.
+// arc instead, which is the same blend without gimbal problems or order dependence (slerp_shorter in
+// engine/motion/slerp.h). Exact at the ends: w <= 0 returns `from`, w >= 1 returns `to` bit for bit.
 glm::quat blend_rotation(const glm::quat& from, const glm::quat& to, float w);
 
 // Eq. 2 for every non-root joint: out.rotations[i] = blend(locomotion[i], reference[i], weights[i]).
 // The root's rotation and position are the trajectory stage's (trajectory.h). `out` must be sized.
+// Four joints at a time (SSE2).
 void blend_joint_rotations(const Pose& locomotion, const Pose& reference, const float* weights, Pose& out);
 
 }  // namespace prep
