@@ -1,5 +1,6 @@
 #include "engine/synthesis/synthesizer.h"
 
+#include <cmath>
 #include <stdexcept>
 
 #include "engine/motion/kinematics.h"
@@ -45,6 +46,14 @@ Synthesizer::Synthesizer(std::shared_ptr<const Skeleton> skeleton, BodyMap body,
   }
   for (int j = 0; j < skeleton_->size(); ++j) {
     if (leg[static_cast<size_t>(j)]) leg_joints_.push_back(j);
+  }
+  // Below an optimized joint but read by no body part: the optimizer's trial kinematics skip them.
+  std::vector<char> below(static_cast<size_t>(skeleton_->size()), 0);
+  for (int j = 0; j < skeleton_->size(); ++j) {
+    const size_t jj = static_cast<size_t>(j);
+    const int parent = skeleton_->joints[jj].parent;
+    below[jj] = balance_model_.optimized_index[jj] >= 0 || (parent >= 0 && below[static_cast<size_t>(parent)]);
+    if (below[jj] && !balance_model_.is_moved[jj]) balance_stale_.push_back(j);
   }
 }
 
@@ -143,9 +152,13 @@ void Synthesizer::stage_balance(const SynthesisInput& in, SynthesisState& state,
     s.balance.rotations.swap(s.rotations);
     result = optimize_balance(*skeleton_, balance_model_, bp, targets, out, s.balance, &state.correction, in.dt, true);
     final_centroids = s.balance.centroids.data();
+    // The optimizer's kinematics are those of the final posture but for the joints it does not read
+    // (fingers, eyes): those are brought up to date, and stage_floor needs no pass of its own.
+    s.balance.positions.swap(s.positions);
+    s.balance.rotations.swap(s.rotations);
+    chain_kinematics(*skeleton_, balance_stale_, out, s.positions, s.rotations);
   } else {
     state.correction.valid = false;  // the next optimized frame starts from its blended posture
-    if (report && has_support) result.before = result.after = balance_cost(balance_model_, bp, targets, s.style.data());
   }
 
   if (report) {
@@ -160,11 +173,17 @@ void Synthesizer::stage_balance(const SynthesisInput& in, SynthesisState& state,
     report->pinned = s.pinned;
     if (has_support) {
       const glm::vec3 before = model_center_of_mass(balance_model_, s.style.data());
-      const glm::vec3 after = model_center_of_mass(balance_model_, final_centroids);
-      report->com_distance_before = result.before.com_distance;
-      report->com_distance_after = result.after.com_distance;
       report->com_inside_before = s.support.contains({before.x, before.z});
-      report->com_inside_after = s.support.contains({after.x, after.z});
+      if (optimize) {
+        const glm::vec3 after = model_center_of_mass(balance_model_, final_centroids);
+        report->com_distance_before = result.before.com_distance;
+        report->com_distance_after = result.after.com_distance;
+        report->com_inside_after = s.support.contains({after.x, after.z});
+      } else {  // the posture stands as blended (the same distance balance_cost gives)
+        const glm::vec2 d(before.x - targets.support_centre.x, before.z - targets.support_centre.y);
+        report->com_distance_before = report->com_distance_after = std::sqrt(glm::dot(d, d));
+        report->com_inside_after = report->com_inside_before;
+      }
     }
   }
 
@@ -180,11 +199,11 @@ void Synthesizer::step(const SynthesisInput& in, SynthesisState& state, Synthesi
   stage_trajectory(in, state, scratch, out);
   stage_ik(in, state, scratch, out);
   stage_balance(in, state, scratch, out, report);
-  if (in.keep_toes_above_floor) stage_floor(scratch, out);
+  if (in.keep_toes_above_floor) stage_floor(scratch, out, true);
 }
 
-void Synthesizer::stage_floor(SynthesisScratch& s, Pose& out) const {
-  forward_kinematics(*skeleton_, out, s.positions, &s.rotations);
+void Synthesizer::stage_floor(SynthesisScratch& s, Pose& out, bool kinematics_given) const {
+  if (!kinematics_given) forward_kinematics(*skeleton_, out, s.positions, &s.rotations);
   const float root_height = out.root_position.y;
   // Usually nothing is below the floor and the kinematics stand; else they are taken again.
   if (keep_toes_above_floor(*skeleton_, body_, out, s.positions, s.rotations) > 0 || out.root_position.y != root_height) {

@@ -116,9 +116,11 @@ class Synthesizer {
   void stage_ik(const SynthesisInput& in, SynthesisState& state, SynthesisScratch& scratch, Pose& out) const;
   void stage_balance(const SynthesisInput& in, SynthesisState& state, SynthesisScratch& scratch, Pose& out,
                      SynthesisReport* report) const;
-  // A toe tip below the floor is pitched up to it (keep_toes_above_floor in foot_ik.h). On return
-  // scratch.positions / rotations hold the forward kinematics of `out` (every joint), for the caller's COM.
-  void stage_floor(SynthesisScratch& scratch, Pose& out) const;
+  // A toe tip below the floor is pitched up to it (keep_toes_above_floor in foot_ik.h). kinematics_given:
+  // scratch.positions / rotations already hold the forward kinematics of `out` (the stages before leave
+  // them so; a caller that changed the pose since passes false). On return they hold those of the result
+  // (every joint), for the caller's COM.
+  void stage_floor(SynthesisScratch& scratch, Pose& out, bool kinematics_given = false) const;
 
  private:
   std::shared_ptr<const Skeleton> skeleton_;
@@ -127,6 +129,7 @@ class Synthesizer {
   BlendCurves curves_;
   BalanceModel balance_model_;
   std::vector<int> leg_joints_;  // the leg chains (hip to toe tip) and their ancestors, in skeleton order
+  std::vector<int> balance_stale_;  // joints whose kinematics the balance optimizer leaves stale, in skeleton order
 };
 
 }  // namespace prep

@@ -673,8 +673,10 @@ void World::step_character(int index) {
     rt.synthesis_previous_root = rt.stream.pose().root_position;
     c.clip = rt.stream.node();
   }
+  bool kinematics_given = !c.in_target;  // the synthesizer's scratch holds the kinematics of `out`
   if (rt.fade_left > 0.0f) {
     // Cross-fade from the pose before a switch (launch, return, restart) into the new stream.
+    kinematics_given = false;
     const float w = smoothstep(1.0f - rt.fade_left / rt.fade_total);
     const glm::vec3 root = out.root_position;
     interpolate(rt.fade_from, out, w, out);
@@ -684,7 +686,7 @@ void World::step_character(int index) {
   }
   // Whatever made the pose (synthesis, a recorded clip fitted to its obstacle, a cross-fade between two
   // poses whose feet differ), no toe goes into the floor.
-  synthesizer_->stage_floor(rt.scratch, out);
+  synthesizer_->stage_floor(rt.scratch, out, kinematics_given);
   if (!c.in_target && rt.fade_left <= 0.0f) c.arm_out_at = -1;
   c.pose = out;
   const glm::vec2 previous_position = c.position;

@@ -1,0 +1,88 @@
+#include "engine/synthesis/synthesizer.h"
+
+#include <doctest/doctest.h>
+
+#include <string>
+#include <vector>
+
+#include "engine/library/builtin.h"
+#include "engine/motion/kinematics.h"
+#include "engine/motion/motion_set.h"
+#include "engine/synthesis/preparation_run.h"
+
+namespace {
+
+using namespace prep;
+
+// Joints below an optimized joint that no body part reads: the balance optimizer's trial kinematics skip
+// them, so the synthesizer must bring them up to date itself.
+int joints_the_optimizer_skips(const BalanceModel& model, const Skeleton& skeleton) {
+  std::vector<char> below(static_cast<size_t>(skeleton.size()), 0);
+  int skipped = 0;
+  for (int j = 0; j < skeleton.size(); ++j) {
+    const size_t jj = static_cast<size_t>(j);
+    const int parent = skeleton.joints[jj].parent;
+    below[jj] = model.optimized_index[jj] >= 0 || (parent >= 0 && below[static_cast<size_t>(parent)]);
+    skipped += below[jj] && !model.is_moved[jj];
+  }
+  return skipped;
+}
+
+// Walks the set's walk toward its first target's T_p at alpha 0.8 (the optimizer runs) and checks that the
+// forward kinematics the synthesizer leaves in its scratch are exactly those of the pose it returns, with
+// and without its own floor stage: the world reads its COM from them.
+void check_kinematics_left_in_scratch(const MotionSet& set, bool keep_toes) {
+  const Params params;
+  const Synthesizer synth(set, params);
+  int target = -1;
+  for (size_t i = 0; i < set.clips.size() && target < 0; ++i) {
+    if (set.clips[i].target_frame >= 0) target = static_cast<int>(i);
+  }
+  REQUIRE(target >= 0);
+  const MotionClip& tc = set.clips[static_cast<size_t>(target)];
+  const Pose reference = tc.clip.frames[static_cast<size_t>(scan_reference_frame(set, tc, params))];
+  const int walk = find_cyclic_clip(set, Role::Walk);
+  REQUIRE(walk >= 0);
+  LocomotionLoop loop(set.clips[static_cast<size_t>(walk)]);
+  SynthesisState state;
+  SynthesisScratch scratch = synth.make_scratch();
+  Pose locomotion, out = synth.make_pose();
+  std::vector<glm::vec3> positions;
+  std::vector<glm::quat> rotations;
+  int balanced = 0;
+  for (int frame = 0; frame < 90; ++frame) {
+    SynthesisInput in;
+    loop.next(locomotion, in.contacts);
+    in.locomotion = &locomotion;
+    in.reference = &reference;
+    in.alpha = 0.8f;
+    in.dt = 1.0f / set.clips[static_cast<size_t>(walk)].clip.fps;
+    in.keep_toes_above_floor = keep_toes;
+    SynthesisReport report;
+    synth.step(in, state, scratch, out, &report);
+    balanced += report.balanced;
+    forward_kinematics(synth.skeleton(), out, positions, &rotations);
+    for (size_t j = 0; j < positions.size(); ++j) {
+      CAPTURE(frame);
+      CAPTURE(j);
+      REQUIRE(scratch.positions[j] == positions[j]);
+      REQUIRE(scratch.rotations[j] == rotations[j]);
+    }
+  }
+  CHECK(balanced > 45);  // most frames went through the optimizer
+}
+
+}  // namespace
+
+TEST_CASE("the synthesizer leaves the forward kinematics of the pose it returns, the balance optimizer's included") {
+  const Params params;
+  const MotionSet builtin = make_builtin_motion_set(params);
+  const MotionSet daz43 = load_motion_set(std::string(PREP_SOURCE_DIR) + "/assets/manifests/daz43.json", params);
+  // daz43 has fingers below the optimized arms: the kinematics the optimizer skips are exercised.
+  CHECK(joints_the_optimizer_skips(Synthesizer(daz43, params).balance_model(), *daz43.skeleton) > 0);
+  for (const MotionSet* set : {&builtin, &daz43}) {
+    CAPTURE(set->name);
+    check_kinematics_left_in_scratch(*set, true);
+    check_kinematics_left_in_scratch(*set, false);
+  }
+}
