@@ -8,19 +8,39 @@
 namespace prep {
 namespace {
 
-float angle_between_unit(glm::vec3 a, glm::vec3 b) { return std::acos(std::clamp(glm::dot(a, b), -1.0f, 1.0f)); }
-
-// The shortest rotation taking direction `from` to direction `to` (both non-zero).
+// The shortest rotation taking direction `from` to direction `to` (both non-zero): the half-angle
+// quaternion normalize(1 + cos, sin * axis) = normalize(1 + f.t, f x t), exact without trigonometry.
 glm::quat rotation_between(glm::vec3 from, glm::vec3 to) {
   const glm::vec3 f = glm::normalize(from);
   const glm::vec3 t = glm::normalize(to);
   const float d = glm::dot(f, t);
   if (d > 0.999999f) return glm::quat(1, 0, 0, 0);
-  glm::vec3 axis = glm::cross(f, t);
-  if (glm::dot(axis, axis) < 1e-12f) {  // opposite: any axis perpendicular to f
-    axis = glm::cross(f, std::abs(f.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0));
+  const glm::vec3 axis = glm::cross(f, t);
+  if (d < -0.999999f || glm::dot(axis, axis) < 1e-12f) {  // opposite: a half turn about an axis perpendicular to f
+    const glm::vec3 half_turn = glm::normalize(glm::cross(f, std::abs(f.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0)));
+    return glm::quat(0.0f, half_turn.x, half_turn.y, half_turn.z);
   }
-  return glm::angleAxis(std::acos(std::clamp(d, -1.0f, 1.0f)), glm::normalize(axis));
+  return glm::normalize(glm::quat(1.0f + d, axis.x, axis.y, axis.z));
+}
+
+// An angle in [0, pi] by its cosine and sine.
+struct Angle {
+  float cos = 1.0f, sin = 0.0f;
+};
+Angle angle_between_unit(glm::vec3 a, glm::vec3 b) {
+  return {std::clamp(glm::dot(a, b), -1.0f, 1.0f), glm::length(glm::cross(a, b))};  // the sine exact near 0 and pi
+}
+Angle angle_of_cosine(float cosine) {
+  const float c = std::clamp(cosine, -1.0f, 1.0f);
+  return {c, std::sqrt(std::max(0.0f, 1.0f - c * c))};
+}
+// The rotation by `to` - `from` about the unit `axis`: cos and sin of the difference by the angle-difference
+// identities, then the half-angle quaternion normalize(1 + cos, sin * axis); no trigonometry.
+glm::quat turn_between(Angle from, Angle to, glm::vec3 axis) {
+  const float c = to.cos * from.cos + to.sin * from.sin;
+  const float s = to.sin * from.cos - to.cos * from.sin;
+  if (1.0f + c < 1e-7f) return glm::quat(0.0f, axis.x, axis.y, axis.z);  // a half turn
+  return glm::normalize(glm::quat(1.0f + c, s * axis.x, s * axis.y, s * axis.z));
 }
 
 // m: how far above the floor an ankle joint is kept, so that its toe can be pitched up to the floor.
@@ -69,14 +89,13 @@ glm::vec3 solve_leg(const Skeleton& skeleton, const LegChain& leg, const IkParam
   glm::vec3 axis = glm::cross(c - a, b - a);
   if (glm::dot(axis, axis) < 1e-8f * upper * upper * lower * lower) axis = glm::cross(c - a, forward);
   axis = glm::normalize(axis);
-  const float ac_ab_0 = angle_between_unit(ac, glm::normalize(b - a));
-  const float ba_bc_0 = angle_between_unit(glm::normalize(a - b), glm::normalize(c - b));
-  const float ac_ab_1 =
-      std::acos(std::clamp((lower * lower - upper * upper - reach * reach) / (-2.0f * upper * reach), -1.0f, 1.0f));
-  const float ba_bc_1 =
-      std::acos(std::clamp((reach * reach - upper * upper - lower * lower) / (-2.0f * upper * lower), -1.0f, 1.0f));
-  const glm::quat r0 = glm::angleAxis(ac_ab_1 - ac_ab_0, axis);  // at the hip, in world
-  const glm::quat r1 = glm::angleAxis(ba_bc_1 - ba_bc_0, axis);  // at the knee, in world
+  const glm::vec3 ab = glm::normalize(b - a);
+  const Angle ac_ab_0 = angle_between_unit(ac, ab);
+  const Angle ba_bc_0 = angle_between_unit(-ab, glm::normalize(c - b));
+  const Angle ac_ab_1 = angle_of_cosine((lower * lower - upper * upper - reach * reach) / (-2.0f * upper * reach));
+  const Angle ba_bc_1 = angle_of_cosine((reach * reach - upper * upper - lower * lower) / (-2.0f * upper * lower));
+  const glm::quat r0 = turn_between(ac_ab_0, ac_ab_1, axis);  // at the hip, in world
+  const glm::quat r1 = turn_between(ba_bc_0, ba_bc_1, axis);  // at the knee, in world
   // Then swing the whole leg about the hip so that the (new) ankle direction points at the target.
   const glm::vec3 c_bent = a + r0 * (b - a) + (r0 * r1) * (c - b);
   const glm::quat r2 = rotation_between(c_bent - a, to_target);
