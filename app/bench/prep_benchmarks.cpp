@@ -1,6 +1,7 @@
 // prep-benchmarks (Google Benchmark): the cost of movement synthesis per character-frame (Sec. 5) on the
 // built-in skeleton (22 joints) and the 43-joint daz43 CMU skeleton, the whole Synthesizer::step and each
-// of its stages alone, and the motion graph's construction (Sec. 4.1) for each library.
+// of its stages alone, forward kinematics alone, and the motion graph's construction (Sec. 4.1) for each
+// library.
 //
 // What a character-frame is here: one call of Synthesizer::step for one character at the engine tick
 // (Params::runtime.fixed_dt, 60 Hz), walking (the set's first cyclic walk) with alpha moving through
@@ -29,6 +30,7 @@
 
 #include "engine/graph/motion_graph.h"
 #include "engine/library/builtin.h"
+#include "engine/motion/kinematics.h"
 #include "engine/motion/motion_set.h"
 #include "engine/synthesis/preparation_run.h"
 #include "engine/synthesis/synthesizer.h"
@@ -159,6 +161,29 @@ void BM_SynthesisStep(benchmark::State& state, Library library, bool balance) {
 
 enum class Stage { Blend, Trajectory, Ik, Balance };
 
+// Forward kinematics of the synthesized pose alone (every joint's world position and rotation), the pass
+// the IK and floor stages run on the whole body.
+void BM_ForwardKinematics(benchmark::State& state, Library library) {
+  const Workload w = make_workload(library, true);
+  const Synthesizer synth(*w.set, w.params);
+  SynthesisScratch scratch = synth.make_scratch();
+  std::vector<Character> cs = make_characters(w, synth);
+  for (int tick = 0; tick < 30; ++tick) {  // poses with preparation and balance in them
+    for (Character& c : cs) {
+      synth.step(input_for(w, c, tick), c.state, scratch, c.out);
+      ++c.frame;
+    }
+  }
+  std::vector<std::vector<glm::vec3>> positions(cs.size());
+  std::vector<std::vector<glm::quat>> rotations(cs.size());
+  for (auto _ : state) {
+    for (size_t i = 0; i < cs.size(); ++i) forward_kinematics(synth.skeleton(), cs[i].out, positions[i], &rotations[i]);
+    benchmark::DoNotOptimize(positions.back().data());
+  }
+  set_counters(state, 0, 0);
+  state.SetLabel(std::to_string(w.set->skeleton->size()) + " joints");
+}
+
 // One stage alone: the stages before it run untimed for every character, then the stage is timed.
 void BM_SynthesisStage(benchmark::State& state, Library library, Stage stage) {
   const Workload w = make_workload(library, true);
@@ -229,6 +254,8 @@ BENCHMARK_CAPTURE(BM_SynthesisStage, builtin_blend, Library::Builtin, Stage::Ble
 BENCHMARK_CAPTURE(BM_SynthesisStage, builtin_trajectory, Library::Builtin, Stage::Trajectory)->UseManualTime()->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_SynthesisStage, builtin_ik, Library::Builtin, Stage::Ik)->UseManualTime()->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_SynthesisStage, builtin_balance, Library::Builtin, Stage::Balance)->UseManualTime()->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_ForwardKinematics, daz43, Library::Daz43)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_ForwardKinematics, builtin, Library::Builtin)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_GraphBuild, builtin, Library::Builtin)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK_CAPTURE(BM_GraphBuild, daz43, Library::Daz43)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK_CAPTURE(BM_GraphBuild, cmu31, Library::Cmu31)->Unit(benchmark::kMillisecond)->Iterations(3);

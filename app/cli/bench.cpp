@@ -1,6 +1,6 @@
 // prep bench: the speed figures (engine/world/benchmark.h measures; this prints): SARSA steps per
 // second, synthesis microseconds per character-frame with and without the balance optimizer (the built-in
-// library and the 43-joint daz43 set), a crowd of 1 to 4,000 characters with controller and full synthesis
+// library and the 43-joint daz43 set), a crowd of 1 to 20,000 characters with controller and full synthesis
 // at 60 Hz on both cores, graph build time, start-up to the first synthesized frame, peak memory.
 #include <cstdio>
 #include <filesystem>
@@ -27,8 +27,8 @@ constexpr double kSarsaTarget = 10e6;         // steps per second
 
 struct Options {
   bool json = false;
-  std::vector<int> crowd{1, 10, 100, 1000, 4000};
-  int frames = 240, warmup = 30, threads = 2;
+  std::vector<int> crowd{1, 10, 100, 1000, 4000, 8000, 12000, 20000};
+  int frames = 600, warmup = 30, threads = 2;
   int synthesis_characters = 1000, synthesis_frames = 60;
   long long sarsa_steps = 20000000;
   std::string scenario = "assets/scenarios/kick.json";
@@ -172,12 +172,12 @@ void run(const Options& o) {
 prep::cli::RegisterCommand bench_command(
     "bench",
     "Speed figures: SARSA steps/s, synthesis us per character-frame (with and without balance), a crowd of 1 to "
-    "4,000 characters (ms per frame, both cores), graph build, start-up, peak memory",
+    "20,000 characters (ms per frame, both cores), graph build, start-up, peak memory",
     46, [](CLI::App& app) {
       auto o = std::make_shared<Options>();
       app.add_flag("--json", o->json, "Print one JSON object");
-      app.add_option("--crowd", o->crowd, "Crowd sizes (comma-separated, default 1,10,100,1000,4000)")->delimiter(',');
-      app.add_option("--frames", o->frames, "Measured frames per crowd size (default 240 = 4 s)");
+      app.add_option("--crowd", o->crowd, "Crowd sizes (comma-separated, default 1,10,100,1000,4000,8000,12000,20000)")->delimiter(',');
+      app.add_option("--frames", o->frames, "Measured frames per crowd size (default 600 = 10 s)");
       app.add_option("--warmup", o->warmup, "Frames stepped before measuring (default 30)");
       app.add_option("--threads", o->threads, "Threads for the crowd (default 2)");
       app.add_option("--synthesis-characters", o->synthesis_characters, "Characters in the synthesis benchmark (default 1000)");

@@ -408,7 +408,8 @@ BalanceResult optimize_balance(const Skeleton& skeleton, const BalanceModel& mod
   result.optimized = true;
   const size_t k_count = model.optimized.size();
   if (!kinematics_given) forward_kinematics(skeleton, pose, s.positions, &s.rotations);
-  part_centroids(skeleton, model, s.positions, s.rotations, s.centroids.data());
+  // The posture's centroids are the style targets (Eq. 7's p_i(t) is this very posture).
+  std::copy(targets.style, targets.style + model.parts.size(), s.centroids.begin());
   BalanceCost current = balance_cost(model, params, targets, s.centroids.data());
   result.before = current;
   result.after = current;

@@ -134,7 +134,7 @@ struct BalanceResult {
 };
 
 // Gradient descent on the upper-body joints of `pose` (the blended, IK-solved posture, whose centroids
-// are targets.style), minimizing Eq. 10 (balance_cost). The paper's rule: at most params.max_steps steps,
+// must be targets.style: they are not computed again), minimizing Eq. 10 (balance_cost). The paper's rule: at most params.max_steps steps,
 // stopping early at a local optimum (no step accepted after params.max_halvings halvings, or C improving by
 // less than params.tolerance).
 //
