@@ -6,14 +6,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <condition_variable>
 #include <cstdio>
 #include <ctime>
 #include <functional>
-#include <mutex>
 #include <numeric>
 #include <random>
-#include <thread>
 
 #include "engine/control/action_effects.h"
 #include "engine/control/environment.h"
@@ -23,6 +20,7 @@
 #include "engine/synthesis/synthesizer.h"
 #include "engine/util/error.h"
 #include "engine/world/floor.h"
+#include "engine/world/frame_workers.h"
 #include "engine/world/policy_cache.h"
 
 namespace prep {
@@ -40,64 +38,6 @@ double cpu_ms(clockid_t clock) {
 
 using floor_plane::kPi;
 
-// Runs job(block) for block = 0 .. blocks-1 on `blocks` threads (the calling thread takes block 0) and
-// returns when all are done; the helper threads persist between calls, so a frame costs one wake-up, not
-// a thread start.
-class FrameWorkers {
- public:
-  explicit FrameWorkers(int blocks) {
-    for (int b = 1; b < blocks; ++b) threads_.emplace_back([this, b] { loop(b); });
-  }
-  ~FrameWorkers() {
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      stop_ = true;
-      ++generation_;
-    }
-    wake_.notify_all();
-    for (auto& t : threads_) t.join();
-  }
-  template <typename Job>
-  void run(Job&& job) {
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      job_ = job;
-      pending_ = static_cast<int>(threads_.size());
-      ++generation_;
-    }
-    wake_.notify_all();
-    job(0);
-    std::unique_lock<std::mutex> lock(mutex_);
-    done_.wait(lock, [&] { return pending_ == 0; });
-  }
-
- private:
-  void loop(int block) {
-    std::uint64_t seen = 0;
-    for (;;) {
-      std::function<void(int)> job;
-      {
-        std::unique_lock<std::mutex> lock(mutex_);
-        wake_.wait(lock, [&] { return generation_ != seen; });
-        seen = generation_;
-        if (stop_) return;
-        job = job_;
-      }
-      job(block);
-      {
-        std::lock_guard<std::mutex> lock(mutex_);
-        if (--pending_ == 0) done_.notify_one();
-      }
-    }
-  }
-  std::vector<std::thread> threads_;
-  std::mutex mutex_;
-  std::condition_variable wake_, done_;
-  std::function<void(int)> job_;
-  std::uint64_t generation_ = 0;
-  int pending_ = 0;
-  bool stop_ = false;
-};
 
 std::string set_source_name(const MotionSet& set) { return set.manifest_path.empty() ? set.name : set.manifest_path; }
 
@@ -224,8 +164,8 @@ CrowdBenchmark benchmark_crowd(const Scenario& scenario, std::shared_ptr<const W
   FrameWorkers workers(threads);
   std::vector<long> synthesized(static_cast<size_t>(threads), 0), balanced(static_cast<size_t>(threads), 0);
   auto step_block = [&](int block, bool count) {
-    const size_t n = worlds.size(), lo = n * static_cast<size_t>(block) / static_cast<size_t>(threads),
-                 hi = n * static_cast<size_t>(block + 1) / static_cast<size_t>(threads);
+    size_t lo = 0, hi = 0;
+    FrameWorkers::block_range(worlds.size(), block, threads, lo, hi);
     for (size_t i = lo; i < hi; ++i) {
       worlds[i]->step();
       if (count)
@@ -235,13 +175,15 @@ CrowdBenchmark benchmark_crowd(const Scenario& scenario, std::shared_ptr<const W
         }
     }
   };
-  for (int f = 0; f < warmup; ++f) workers.run([&](int b) { step_block(b, false); });
+  const std::function<void(int)> step_uncounted = [&](int b) { step_block(b, false); };
+  const std::function<void(int)> step_counted = [&](int b) { step_block(b, true); };
+  for (int f = 0; f < warmup; ++f) workers.run(step_uncounted);
   std::vector<double> frame_ms;
   frame_ms.reserve(static_cast<size_t>(std::max(frames, 0)));
   const double cpu0 = cpu_ms(CLOCK_PROCESS_CPUTIME_ID);
   for (int f = 0; f < frames; ++f) {
     const auto t0 = Clock::now();
-    workers.run([&](int b) { step_block(b, true); });
+    workers.run(step_counted);
     frame_ms.push_back(ms_since(t0));
   }
   const double total = std::accumulate(frame_ms.begin(), frame_ms.end(), 0.0);
