@@ -7,6 +7,7 @@
 #include <iomanip>
 #include <iostream>
 
+#include "app/demo/crowd_run.h"
 #include "app/demo/headless.h"
 #include "app/demo/motion_folder.h"
 #include "app/demo/motions.h"
@@ -93,7 +94,12 @@ int main(int argc, char** argv) {
   int shadow_map = render::RenderSettings{}.shadow_map_size;
   bool no_panels = false, no_props = false, no_vsync = false, json = false, capsules = false, until_goal = false;
   bool clearance = false;
+  int crowd = 0;
   cli.add_flag("--headless", headless, "Render off-screen through OSMesa (no display needed)");
+  cli.add_option("--crowd", crowd,
+                 "A crowd: N lanes of the scenario (default assets/scenarios/stadium.json) side by side, every character "
+                 "preparing; headless: --screenshot after --seconds, or --bench-frames")
+      ->check(CLI::Range(1, 100000));
   cli.add_option("--scenario", scenario, "Scenario JSON (default: assets/scenarios/obstacles.json)");
   // The last --seconds counts: scripts/demo.sh gives one ahead of the user's arguments.
   cli.add_option("--seconds", seconds, "Headless scenario: simulated seconds (with --until-goal the most)")
@@ -172,6 +178,31 @@ int main(int argc, char** argv) {
       if (clearance) throw std::runtime_error("--clearance measures a scenario's world: the clip viewer has none");
       return clip_viewer(headless, motions_arg, bvh, unit_scale, clip_name, params_file, width, height, w, strip, frames, screenshot, time,
                          no_panels, no_props, bench_frames, render);
+    }
+    if (crowd > 0) {
+      if (folder || viewer) throw std::runtime_error("--crowd plays a scenario's lanes: not with --motions DIR or the clip viewer");
+      CrowdRunOptions c;
+      c.scenario = scenario.empty() ? default_crowd_scenario_path() : scenario;
+      c.lanes = crowd;
+      c.seconds = seconds;
+      c.width = w.width;
+      c.height = w.height;
+      c.screenshot = screenshot;
+      c.bench_frames = bench_frames;
+      c.panels = !no_panels;
+      c.params = params_file;
+      c.render = render;
+      if (headless) {
+        run_crowd_headless(c);
+        return 0;
+      }
+      try {
+        run_crowd_window(c, w);
+      } catch (const render::NoDisplayError& e) {
+        std::cerr << "prep-demo: " << e.what() << "\n";
+        return 2;
+      }
+      return 0;
     }
     if (scenario.empty()) scenario = default_scenario_path();
     if (headless) {

@@ -14,6 +14,7 @@
 #include <stdexcept>
 
 #include "app/demo/clip_viewer_app.h"
+#include "app/demo/crowd_app.h"
 #include "app/demo/stress.h"
 #include "app/demo/demo_app.h"
 #include "app/render/gl_context.h"
@@ -205,6 +206,17 @@ void run_demo_window(const std::string& scenario, const std::optional<Params>& p
   });
   std::cout << "prep-demo: " << stress.summary() << std::endl;
   if (!stress.report().ok()) throw std::runtime_error("the stress run failed: " + stress.summary());
+}
+
+void run_crowd_window(const CrowdRunOptions& crowd_options, const WindowOptions& options) {
+  std::unique_ptr<Crowd> crowd = make_crowd(crowd_options);
+  render::GlfwContext context(options.width, options.height, "prep demo: crowd", options.vsync);
+  WindowState window_state;
+  install_input(context, window_state);
+  CrowdApp app(context, *crowd, context.window(), crowd_options.render);
+  window_state.app = &app;
+  std::cout << "prep-demo: " << gl::describe_context() << "\n";
+  run_loop(context, app, options);
 }
 
 void run_clip_viewer_window(const DemoMotions& motions, const WindowOptions& options) {

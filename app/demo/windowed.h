@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "app/demo/crowd_run.h"
 #include "app/demo/motion_folder.h"
 #include "app/demo/motions.h"
 #include "engine/params/params.h"
@@ -45,6 +46,8 @@ struct WindowOptions {
 // `folder`: the user's folder of takes the scenario was made for (its panel is shown), or nullptr.
 void run_demo_window(const std::string& scenario, const std::optional<Params>& params, const WindowOptions& options,
                      std::shared_ptr<const MotionFolder> folder = nullptr);
+// The crowd demo (crowd_app.h).
+void run_crowd_window(const CrowdRunOptions& crowd_options, const WindowOptions& options);
 // The clip viewer.
 void run_clip_viewer_window(const DemoMotions& motions, const WindowOptions& options);
 

@@ -8,6 +8,10 @@ namespace prep::demo {
 
 namespace {
 
+glm::vec3 focus_of(const glm::vec3& root) { return {root.x, 0.9f, root.z}; }
+
+}  // namespace
+
 std::optional<render::ObjectType> render_type(ObjectType t) {
   switch (t) {
     case ObjectType::Ball: return render::ObjectType::Ball;
@@ -18,10 +22,6 @@ std::optional<render::ObjectType> render_type(ObjectType t) {
   }
   return std::nullopt;
 }
-
-glm::vec3 focus_of(const glm::vec3& root) { return {root.x, 0.9f, root.z}; }
-
-}  // namespace
 
 render::Scene to_render_scene(const WorldScene& world, bool balance) {
   render::Scene s;

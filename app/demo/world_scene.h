@@ -2,11 +2,15 @@
 #pragma once
 
 #include <glm/vec2.hpp>
+#include <optional>
 
 #include "app/render/scene.h"
 #include "engine/world/world.h"
 
 namespace prep::demo {
+
+// How a world object is drawn (opponents: as characters, not as objects).
+std::optional<render::ObjectType> render_type(ObjectType t);
 
 // Characters (the user in palette::kCharacter, the others in kOtherCharacter), obstacles and balls (opponent
 // objects are characters), the goal waypoints, the source ring; the focus on the user's root. With

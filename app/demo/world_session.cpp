@@ -33,6 +33,7 @@ std::vector<ScenarioEntry> list_scenarios(const std::string& folder) {
 
 std::string default_scenarios_dir() { return source_dir() + "/assets/scenarios"; }
 std::string default_scenario_path() { return default_scenarios_dir() + "/obstacles.json"; }
+std::string default_crowd_scenario_path() { return default_scenarios_dir() + "/stadium.json"; }
 
 const char* phase_name(SessionPhase phase) {
   switch (phase) {

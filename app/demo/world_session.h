@@ -45,6 +45,7 @@ struct ScenarioEntry {
 std::vector<ScenarioEntry> list_scenarios(const std::string& folder);
 std::string default_scenarios_dir();   // <repository>/assets/scenarios
 std::string default_scenario_path();   // ... /obstacles.json
+std::string default_crowd_scenario_path();  // ... /stadium.json (one lane of the crowd demo)
 
 enum class SessionPhase {
   Empty,     // nothing opened

@@ -134,7 +134,7 @@ void append_object_primitives(const SceneObject& object, ScenePrimitives& out) {
   for (const ObjectSolid& s : object_solids(type, object.size)) {
     if (s.sphere) {
       const glm::vec3 c(box_model(o, h, s.centre, glm::vec3(1.0f)) * glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
-      out.capsules.push_back({glm::vec4(c, 0.5f * s.extents.x), glm::vec4(c, glow), palette::kBall});
+      (object.light ? out.light_capsules : out.capsules).push_back({glm::vec4(c, 0.5f * s.extents.x), glm::vec4(c, glow), palette::kBall});
       continue;
     }
     const bool rail = s.part == SolidPart::Rail || s.part == SolidPart::Board;  // what is crossed: the bright part
@@ -153,7 +153,8 @@ ScenePrimitives build_primitives(const Scene& scene, const std::vector<bool>& sk
     const SceneCharacter& c = scene.characters[i];
     if (!c.skeleton) continue;
     const BodyVolumes& v = volumes.get(c.skeleton);
-    if (i >= skinned.size() || !skinned[i]) append_character_capsules(c, v, prims.capsules);
+    if (c.light) append_character_capsules(c, v, prims.light_capsules);
+    else if (i >= skinned.size() || !skinned[i]) append_character_capsules(c, v, prims.capsules);
     append_flagged_capsules(c, v, prims.flagged);
   }
   for (const SceneObject& o : scene.objects) append_object_primitives(o, prims);
@@ -198,7 +199,7 @@ FloorRect merged(const FloorRect& a, const FloorRect& b) {
 }  // namespace
 
 std::vector<glm::vec4> shadow_receiver_rects(const Scene& scene, const ScenePrimitives& prims, const glm::vec3& light_dir,
-                                             int max_rects) {
+                                             int max_rects, glm::vec2 focus, float reach) {
   const glm::vec3 l = glm::normalize(light_dir);
   const float up = std::max(l.y, 0.05f);
   // Slack for the shadow lookup's normal offset and filtering (a texel or two of the map).
@@ -229,6 +230,13 @@ std::vector<glm::vec4> shadow_receiver_rects(const Scene& scene, const ScenePrim
     FloorRect r;
     for (const glm::vec3& p : c.joint_positions) caster(r, p, 0.18f);
     if (!r.empty()) rects.push_back(r);
+  }
+  if (std::isfinite(reach)) {
+    const auto beyond = [&](const FloorRect& r) {
+      const glm::vec2 nearest = glm::clamp(focus, r.lo, r.hi);
+      return glm::length(nearest - focus) > reach;
+    };
+    rects.erase(std::remove_if(rects.begin(), rects.end(), beyond), rects.end());
   }
   // Merge down to max_rects: each time the pair whose union adds the least area.
   while (static_cast<int>(rects.size()) > std::max(max_rects, 1)) {
@@ -300,6 +308,22 @@ Renderer::Renderer(const RenderSettings& settings) : settings_(settings) {
     bind_float_attribute(1, 1, 4 * sizeof(float), 3 * sizeof(float), false);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, capsule_ibo_);
     bind_instances(flagged_instances_);
+    // Light bodies: a capsule of 6 slices and one ring per end (36 triangles against 560).
+    std::vector<float> light_v;
+    std::vector<unsigned> light_idx;
+    capsule_mesh(6, 1, light_v, light_idx);
+    light_index_count_ = static_cast<int>(light_idx.size());
+    glGenVertexArrays(1, &light_vao_);
+    glBindVertexArray(light_vao_);
+    glGenBuffers(1, &light_vbo_);
+    glBindBuffer(GL_ARRAY_BUFFER, light_vbo_);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(light_v.size() * sizeof(float)), light_v.data(), GL_STATIC_DRAW);
+    bind_float_attribute(0, 3, 4 * sizeof(float), 0, false);
+    bind_float_attribute(1, 1, 4 * sizeof(float), 3 * sizeof(float), false);
+    glGenBuffers(1, &light_ibo_);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, light_ibo_);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(light_idx.size() * sizeof(unsigned)), light_idx.data(), GL_STATIC_DRAW);
+    bind_instances(light_instances_);
   }
   // Boxes: per-vertex position + normal, per-instance model matrix (4 columns) and colour/glow.
   {
@@ -385,9 +409,10 @@ Renderer::~Renderer() {
                              skinned_depth_program_};
   for (GLuint p : programs) glDeleteProgram(p);
   const GLuint buffers[] = {capsule_vbo_, capsule_ibo_, capsule_instances_, flagged_instances_, box_vbo_, box_ibo_, box_instances_,
-                            ground_vbo_, receiver_vbo_, marker_vbo_, marker_instances_, skin_block_};
+                            ground_vbo_, receiver_vbo_, marker_vbo_, marker_instances_, skin_block_,
+                            light_vbo_, light_ibo_, light_instances_};
   glDeleteBuffers(static_cast<GLsizei>(std::size(buffers)), buffers);
-  const GLuint arrays[] = {capsule_vao_, flagged_vao_, box_vao_, ground_vao_, receiver_vao_, marker_vao_};
+  const GLuint arrays[] = {capsule_vao_, flagged_vao_, box_vao_, ground_vao_, receiver_vao_, marker_vao_, light_vao_};
   glDeleteVertexArrays(static_cast<GLsizei>(std::size(arrays)), arrays);
   if (shadow_fbo_) glDeleteFramebuffers(1, &shadow_fbo_);
   if (shadow_texture_) glDeleteTextures(1, &shadow_texture_);
@@ -422,6 +447,7 @@ void Renderer::prepare(const Scene& scene) {
   if (settings_.skinned_bodies) {
     for (size_t i = 0; i < scene.characters.size(); ++i) {
       const SceneCharacter& c = scene.characters[i];
+      if (c.light) continue;
       const SkinnedBody* body = body_for(c.skeleton);
       if (!body || c.joint_positions.size() != static_cast<size_t>(c.skeleton->size())) continue;
       skinned[i] = true;
@@ -438,6 +464,7 @@ void Renderer::prepare(const Scene& scene) {
   focus_ = scene.focus;
   upload(capsule_instances_, primitives_.capsules);
   upload(flagged_instances_, primitives_.flagged);
+  upload(light_instances_, primitives_.light_capsules);
   upload(box_instances_, primitives_.boxes);
   upload(marker_instances_, primitives_.markers);
   // The shadow camera: orthographic, looking down the light direction at the focus.
@@ -446,17 +473,27 @@ void Renderer::prepare(const Scene& scene) {
   const glm::mat4 view = glm::lookAt(centre + settings_.light_dir * 30.0f, centre, up);
   const float e = settings_.shadow_extent;
   light_view_proj_ = glm::ortho(-e, e, -e, e, 1.0f, 60.0f) * view;
-  shadow_rects_ = shadow_receiver_rects(scene, primitives_, settings_.light_dir, kMaxShadowRects);
+  // The shadow map's square seen on the floor: its half-diagonal, stretched by the light's slant.
+  const float reach = 1.5f * e / std::max(settings_.light_dir.y, 0.05f);
+  shadow_rects_ = shadow_receiver_rects(scene, primitives_, settings_.light_dir, kMaxShadowRects, {centre.x, centre.z}, reach);
 }
 
 void Renderer::draw_capsule_bodies(GLuint program, const glm::mat4& view_proj) {
-  if (primitives_.capsules.empty()) return;
+  if (primitives_.capsules.empty() && primitives_.light_capsules.empty()) return;
   glUseProgram(program);
   glUniformMatrix4fv(glGetUniformLocation(program, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
-  glBindVertexArray(capsule_vao_);
-  glDrawElementsInstanced(GL_TRIANGLES, capsule_index_count_, GL_UNSIGNED_INT, nullptr,
-                          static_cast<GLsizei>(primitives_.capsules.size()));
-  triangles_ += capsule_index_count_ / 3 * static_cast<int>(primitives_.capsules.size());
+  if (!primitives_.capsules.empty()) {
+    glBindVertexArray(capsule_vao_);
+    glDrawElementsInstanced(GL_TRIANGLES, capsule_index_count_, GL_UNSIGNED_INT, nullptr,
+                            static_cast<GLsizei>(primitives_.capsules.size()));
+    triangles_ += capsule_index_count_ / 3 * static_cast<int>(primitives_.capsules.size());
+  }
+  if (!primitives_.light_capsules.empty()) {
+    glBindVertexArray(light_vao_);
+    glDrawElementsInstanced(GL_TRIANGLES, light_index_count_, GL_UNSIGNED_INT, nullptr,
+                            static_cast<GLsizei>(primitives_.light_capsules.size()));
+    triangles_ += light_index_count_ / 3 * static_cast<int>(primitives_.light_capsules.size());
+  }
 }
 
 void Renderer::draw_boxes(GLuint program, const glm::mat4& view_proj) {

@@ -9,6 +9,8 @@
 // measure tests, so the renderer keeps no sizes of its own.
 #pragma once
 
+#include <cmath>
+
 #include <glm/mat4x4.hpp>
 #include <deque>
 #include <glm/vec4.hpp>
@@ -59,6 +61,9 @@ struct ScenePrimitives {
   // The clearance view's capsules (SceneCharacter::flagged): drawn over the skinned bodies, in the main
   // pass only (a debugging aid casts no shadow, so turning it on changes no other pixel).
   std::vector<CapsuleInstance> flagged;
+  // The capsules of light bodies (SceneCharacter::light) and light balls (SceneObject::light), drawn with
+  // the low-poly capsule.
+  std::vector<CapsuleInstance> light_capsules;
 };
 
 // The body volumes of each skeleton drawn, made on first use: BodyVolumes reads the body map and every
@@ -80,12 +85,14 @@ class BodyVolumesCache {
 // flagged capsules are drawn all the same). Without a cache the volumes are made for this call.
 ScenePrimitives build_primitives(const Scene& scene, const std::vector<bool>& skinned, BodyVolumesCache& volumes);
 ScenePrimitives build_primitives(const Scene& scene, const std::vector<bool>& skinned = {});
-// Where on the floor shadows can fall: for every caster (each capsule, each box, each character's joints)
-// the rectangle (min x, min z, max x, max z) holding its footprint and its shadow cast along light_dir
-// (toward the light), grown by its radius; merged (the pair whose union adds the least area first) to at
-// most max_rects. Only there is the floor drawn with the shadow map lookup (ground.glsl).
+// Where on the floor shadows can fall: for every caster (each capsule, each box, each character's joints;
+// a light body's capsules lie within its joints' rectangle) the rectangle (min x, min z, max x, max z)
+// holding its footprint and its shadow cast along light_dir (toward the light), grown by its radius;
+// merged (the pair whose union adds the least area first) to at most max_rects. Only there is the floor
+// drawn with the shadow map lookup (ground.glsl). Rectangles wholly farther than `reach` from `focus` (on
+// the floor) are left out: the shadow map does not reach them.
 std::vector<glm::vec4> shadow_receiver_rects(const Scene& scene, const ScenePrimitives& prims, const glm::vec3& light_dir,
-                                             int max_rects);
+                                             int max_rects, glm::vec2 focus = glm::vec2(0.0f), float reach = INFINITY);
 constexpr int kMaxShadowRects = 8;
 // The capsules of one character's body, `volumes` (made for its skeleton) placed at its pose, in its colour.
 void append_character_capsules(const SceneCharacter& character, const BodyVolumes& volumes, std::vector<CapsuleInstance>& out);
@@ -163,6 +170,8 @@ class Renderer {
   GLuint skinned_program_ = 0, skinned_depth_program_ = 0, skin_block_ = 0;
   GLuint capsule_vao_ = 0, capsule_vbo_ = 0, capsule_ibo_ = 0, capsule_instances_ = 0;
   GLuint flagged_vao_ = 0, flagged_instances_ = 0;  // the same capsule mesh, the flagged instances
+  GLuint light_vao_ = 0, light_vbo_ = 0, light_ibo_ = 0, light_instances_ = 0;  // the low-poly capsule
+  int light_index_count_ = 0;
   GLuint box_vao_ = 0, box_vbo_ = 0, box_ibo_ = 0, box_instances_ = 0;
   GLuint ground_vao_ = 0, ground_vbo_ = 0, receiver_vao_ = 0, receiver_vbo_ = 0;
   GLuint ground_unshadowed_program_ = 0;

@@ -27,6 +27,9 @@ struct SceneCharacter {
   // The clearance view: capsules of this character's body (indices into BodyVolumes(*skeleton).capsules(),
   // engine/motion/body_volumes.h) drawn in palette::kClearance over the body; empty: none.
   std::vector<int> flagged;
+  // Far from the camera (the crowd): drawn as a light body, its capsules with a few dozen triangles each,
+  // never skinned.
+  bool light = false;
 };
 
 // Runs forward kinematics for `pose` on `skeleton`.
@@ -48,6 +51,7 @@ struct SceneObject {
   float heading = 0.0f;      // radians about +Y; at 0 the obstacle spans the X axis (crossed walking along +Z)
   glm::vec3 size{1.0f};      // see ObjectType
   bool is_source = false;    // highlighted as the source of influence
+  bool light = false;        // far from the camera (the crowd): a ball drawn with the low-poly sphere
 };
 
 // Balance (Sec. 5.3) of one character, drawn on the floor when the demo's toggle is on (overlay.h): the
