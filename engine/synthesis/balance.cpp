@@ -479,6 +479,11 @@ BalanceResult optimize_balance(const Skeleton& skeleton, const BalanceModel& mod
   s.start_centroids = s.centroids;
 
   for (int iteration = 0; iteration < params.max_steps; ++iteration) {
+    // Room left in the trust region: a step may move a centroid this far from where it is now (by the
+    // triangle inequality this keeps both bounds). Checked first: at the edge no gradient is needed.
+    const float room = std::min(max_shift - largest_move(model, s.centroids.data(), targets.style),
+                                max_change - largest_move(model, s.centroids.data(), s.start_centroids.data()));
+    if (!(room > edge)) break;  // at the edge of the trust region: what is left is not worth a step
     const glm::vec3 com = moved_com(model, fixed_com, s.centroids.data());
     moved_gradient(skeleton, model, params, targets, com, s);
     // First trial step: where the linearized COM comes closest to the support centre along the descent
@@ -494,12 +499,7 @@ BalanceResult optimize_balance(const Skeleton& skeleton, const BalanceModel& mod
         if (best > 0.0f) step = std::min(best, params.step_size);
       }
     }
-    // Room left in the trust region: a step may move a centroid this far from where it is now (by the
-    // triangle inequality this keeps both bounds).
-    const float room = std::min(max_shift - largest_move(model, s.centroids.data(), targets.style),
-                                max_change - largest_move(model, s.centroids.data(), s.start_centroids.data()));
-    if (!(room > edge)) break;  // at the edge of the trust region: what is left is not worth a step
-    // Keep the first trial inside it: the centroids' first-order motion per unit step (step_motion).
+    // Keep the first trial inside the trust region: the centroids' first-order motion per unit step (step_motion).
     const float motion = step_motion(skeleton, model, s);
     if (motion * step > room) step = 0.95f * room / motion;
     bool accepted = false;
