@@ -187,6 +187,7 @@ void Synthesizer::stage_balance(const SynthesisInput& in, SynthesisState& state,
     }
   }
 
+  s.support_of_output = true;
   std::copy(state.previous.begin(), state.previous.begin() + static_cast<long>(n_parts), state.before_previous.begin());
   std::copy(final_centroids, final_centroids + n_parts, state.previous.begin());
   state.history = std::min(state.history + 1, 2);
@@ -203,11 +204,15 @@ void Synthesizer::step(const SynthesisInput& in, SynthesisState& state, Synthesi
 }
 
 void Synthesizer::stage_floor(SynthesisScratch& s, Pose& out, bool kinematics_given) const {
-  if (!kinematics_given) forward_kinematics(*skeleton_, out, s.positions, &s.rotations);
+  if (!kinematics_given) {
+    forward_kinematics(*skeleton_, out, s.positions, &s.rotations);
+    s.support_of_output = false;  // a pose the stages before did not make
+  }
   const float root_height = out.root_position.y;
   // Usually nothing is below the floor and the kinematics stand; else they are taken again.
   if (keep_toes_above_floor(*skeleton_, body_, out, s.positions, s.rotations) > 0 || out.root_position.y != root_height) {
     forward_kinematics(*skeleton_, out, s.positions, &s.rotations);
+    s.support_of_output = false;
   }
 }
 

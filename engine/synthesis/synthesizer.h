@@ -87,6 +87,9 @@ struct SynthesisScratch {
   glm::vec3 locomotion_jump{0.0f};  // how far the locomotion stream was moved this frame beyond its displacement
   BalanceScratch balance;
   SupportPolygon support;
+  // `support` is that of the pose the last step() or stage_floor() returned: its feet and contacts are
+  // those the balance stage saw (the floor stage changed nothing).
+  bool support_of_output = false;
 };
 
 class Synthesizer {

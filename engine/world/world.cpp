@@ -574,8 +574,11 @@ void World::update_balance(int index, bool kinematics_in_scratch) {
   segment_centroids(*set.skeleton, set.mass, positions, rotations, rt.centroids);
   c.com = center_of_mass(set.mass, rt.centroids);
   c.contacts = rt.stream.contacts();
-  const FootPoints feet = foot_points(*set.skeleton, set.body, positions, rotations);
-  c.support = support_polygon(feet, c.contacts, params_.contacts);
+  if (kinematics_in_scratch && rt.scratch.support_of_output) {
+    c.support = rt.scratch.support;  // the synthesizer's: the same feet, the same contacts
+  } else {
+    support_polygon(foot_points(*set.skeleton, set.body, positions, rotations), c.contacts, params_.contacts, c.support);
+  }
   c.com_in_support = !c.support.empty() && c.support.contains({c.com.x, c.com.z});
 }
 

@@ -5,7 +5,12 @@
 #include <cmath>
 #include <memory>
 #include <string>
+#include <vector>
 
+#include "engine/motion/center_of_mass.h"
+#include "engine/motion/contacts.h"
+#include "engine/motion/kinematics.h"
+#include "engine/motion/support_polygon.h"
 #include "engine/world/policy_cache.h"
 #include "tests/support/paths.h"
 #include "tests/world/builtin_assets.h"
@@ -149,4 +154,29 @@ TEST_CASE("without auto launch the user arrives, stops on the launch point fully
   REQUIRE(world.launches().size() == 1);
   CHECK(world.launches()[0].object == 0);
   CHECK(world.launches()[0].alpha_at_launch == doctest::Approx(1.0));
+}
+
+TEST_CASE("every tick the COM and the support polygon are those of the pose shown, however the pose was made") {
+  // The world reuses the synthesizer's kinematics and support polygon when the pose is the synthesized one;
+  // through launches, cross-fades and recorded clips they must equal a fresh computation from the pose.
+  World world(scenario("obstacles"), builtin_assets());
+  world.set_auto(true);
+  const MotionSet& set = *world.assets().set;
+  std::vector<glm::vec3> positions, centroids;
+  std::vector<glm::quat> rotations;
+  int launches_seen = 0;
+  for (int tick = 0; tick < 60 * 25; ++tick) {
+    world.step();
+    for (const WorldCharacter& c : world.characters()) {
+      forward_kinematics(*set.skeleton, c.pose, positions, &rotations);
+      segment_centroids(*set.skeleton, set.mass, positions, rotations, centroids);
+      CHECK(c.com == center_of_mass(set.mass, centroids));
+      const SupportPolygon fresh =
+          support_polygon(foot_points(*set.skeleton, set.body, positions, rotations), c.contacts, world.params().contacts);
+      REQUIRE(c.support.hull.size() == fresh.hull.size());
+      for (size_t k = 0; k < fresh.hull.size(); ++k) CHECK(c.support.hull[k] == fresh.hull[k]);
+    }
+    launches_seen = static_cast<int>(world.launches().size());
+  }
+  CHECK(launches_seen >= 2);  // the run went through launches and the cross-fades around them
 }
