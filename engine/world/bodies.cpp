@@ -126,7 +126,7 @@ void World::keep_clear_of_obstacles(int index) {
       float depth = 0.0f;
       for (const PlacedCapsule& capsule : rt.capsules) {
         const PlacedCapsule shifted{capsule.a + moved, capsule.b + moved, capsule.radius};
-        for (const ObjectSolid& s : solids_[k]) depth = std::max(depth, -capsule_solid_distance(shifted, s, at, o.spec.heading));
+        for (const ObjectSolid& s : solids_[k]) depth = std::max(depth, capsule_solid_depth(shifted, s, at, o.spec.heading));
       }
       if (depth <= 0.0f) break;
       push += (depth + kClearSkin) * n;

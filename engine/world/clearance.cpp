@@ -90,10 +90,27 @@ float segment_segment_distance(glm::vec3 p1, glm::vec3 q1, glm::vec3 p2, glm::ve
   return glm::length(p1 + s * d1 - (p2 + t * d2));
 }
 
+namespace {
+
+// capsule_solid_distance with the capsule's ends already in the object's frame.
+float framed_capsule_solid_distance(glm::vec3 a, glm::vec3 b, float radius, const ObjectSolid& s) {
+  if (s.sphere) return glm::length(closest_on_segment(s.centre, a, b) - s.centre) - 0.5f * s.extents.x - radius;
+  return segment_box_distance(a, b, s.centre, 0.5f * s.extents) - radius;
+}
+
+}  // namespace
+
 float capsule_solid_distance(const PlacedCapsule& pc, const ObjectSolid& s, glm::vec2 at, float heading) {
+  return framed_capsule_solid_distance(to_object_frame(pc.a, at, heading), to_object_frame(pc.b, at, heading), pc.radius, s);
+}
+
+float capsule_solid_depth(const PlacedCapsule& pc, const ObjectSolid& s, glm::vec2 at, float heading) {
   const glm::vec3 a = to_object_frame(pc.a, at, heading), b = to_object_frame(pc.b, at, heading);
-  if (s.sphere) return glm::length(closest_on_segment(s.centre, a, b) - s.centre) - 0.5f * s.extents.x - pc.radius;
-  return segment_box_distance(a, b, s.centre, 0.5f * s.extents) - pc.radius;
+  const glm::vec3 middle = 0.5f * (a + b);
+  const float to_middle = s.sphere ? glm::length(middle - s.centre) - 0.5f * s.extents.x
+                                   : point_box_distance(middle - s.centre, 0.5f * s.extents);
+  if (to_middle - 0.5f * glm::length(b - a) - pc.radius > kSurelyClear) return 0.0f;
+  return std::max(0.0f, -framed_capsule_solid_distance(a, b, pc.radius, s));
 }
 
 ClearanceMeter::ClearanceMeter(const Skeleton& skeleton) : volumes_(skeleton) {}

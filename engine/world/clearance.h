@@ -53,6 +53,12 @@ float segment_segment_distance(glm::vec3 a0, glm::vec3 a1, glm::vec3 b0, glm::ve
 // The signed gap between a placed capsule and one solid of an object standing at `at` on the floor, turned
 // `heading` (radians).
 float capsule_solid_distance(const PlacedCapsule& capsule, const ObjectSolid& solid, glm::vec2 at, float heading);
+// How deep the capsule is in the solid: max(0, -capsule_solid_distance), the same number, with the pairs
+// that cannot touch skipped. A segment's distance to a solid is at least its midpoint's less half its
+// length (a distance changes no faster than the point moves), so a capsule whose bounding sphere clears
+// the solid by more than kSurelyClear is not in it, and no search along the segment is needed.
+float capsule_solid_depth(const PlacedCapsule& capsule, const ObjectSolid& solid, glm::vec2 at, float heading);
+constexpr float kSurelyClear = 1e-4f;  // m: far above the rounding of the distances, far below any depth that matters
 
 class ClearanceMeter {
  public:
