@@ -121,12 +121,13 @@ void World::keep_clear_of_obstacles(int index) {
     if (glm::dot(c.position - at, n) < 0.0f) n = -n;
     // The depth is the nearest way out, which may be up (a foot on the board's top): a step along n by it
     // may leave the body in; a few steps finish the way out.
+    const ObjectFrame frame(at, o.spec.heading);
     for (int step = 0; step < 4; ++step) {
       const glm::vec3 moved(push.x, 0.0f, push.y);
       float depth = 0.0f;
       for (const PlacedCapsule& capsule : rt.capsules) {
-        const PlacedCapsule shifted{capsule.a + moved, capsule.b + moved, capsule.radius};
-        for (const ObjectSolid& s : solids_[k]) depth = std::max(depth, capsule_solid_depth(shifted, s, at, o.spec.heading));
+        const PlacedCapsule framed{frame.to_local(capsule.a + moved), frame.to_local(capsule.b + moved), capsule.radius};
+        for (const ObjectSolid& s : solids_[k]) depth = std::max(depth, framed_capsule_solid_depth(framed, s));
       }
       if (depth <= 0.0f) break;
       push += (depth + kClearSkin) * n;

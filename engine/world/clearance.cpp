@@ -105,7 +105,12 @@ float capsule_solid_distance(const PlacedCapsule& pc, const ObjectSolid& s, glm:
 }
 
 float capsule_solid_depth(const PlacedCapsule& pc, const ObjectSolid& s, glm::vec2 at, float heading) {
-  const glm::vec3 a = to_object_frame(pc.a, at, heading), b = to_object_frame(pc.b, at, heading);
+  return framed_capsule_solid_depth({to_object_frame(pc.a, at, heading), to_object_frame(pc.b, at, heading), pc.radius}, s);
+}
+
+float framed_capsule_solid_depth(const PlacedCapsule& framed, const ObjectSolid& s) {
+  const glm::vec3 a = framed.a, b = framed.b;
+  const PlacedCapsule& pc = framed;
   const glm::vec3 middle = 0.5f * (a + b);
   const float to_middle = s.sphere ? glm::length(middle - s.centre) - 0.5f * s.extents.x
                                    : point_box_distance(middle - s.centre, 0.5f * s.extents);

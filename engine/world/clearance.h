@@ -58,6 +58,8 @@ float capsule_solid_distance(const PlacedCapsule& capsule, const ObjectSolid& so
 // length (a distance changes no faster than the point moves), so a capsule whose bounding sphere clears
 // the solid by more than kSurelyClear is not in it, and no search along the segment is needed.
 float capsule_solid_depth(const PlacedCapsule& capsule, const ObjectSolid& solid, glm::vec2 at, float heading);
+// The same for a capsule whose ends are already in the object's frame (ObjectFrame::to_local).
+float framed_capsule_solid_depth(const PlacedCapsule& framed, const ObjectSolid& solid);
 constexpr float kSurelyClear = 1e-4f;  // m: far above the rounding of the distances, far below any depth that matters
 
 class ClearanceMeter {

@@ -56,11 +56,18 @@ std::vector<ObjectSolid> object_solids(ObjectType type, glm::vec3 size) {
   return solids;
 }
 
-glm::vec3 to_object_frame(glm::vec3 world, glm::vec2 position, float heading) {
+ObjectFrame::ObjectFrame(glm::vec2 at, float heading)
+    : position(at), cos_heading(std::cos(heading)), sin_heading(std::sin(heading)) {}
+
+glm::vec3 ObjectFrame::to_local(glm::vec3 world) const {
   // The object's X axis is (cos h, -sin h) on the floor, its Z axis (sin h, cos h): the inverse rotation.
   const float dx = world.x - position.x, dz = world.z - position.y;
-  const float c = std::cos(heading), s = std::sin(heading);
+  const float c = cos_heading, s = sin_heading;
   return {c * dx - s * dz, world.y, s * dx + c * dz};
+}
+
+glm::vec3 to_object_frame(glm::vec3 world, glm::vec2 position, float heading) {
+  return ObjectFrame(position, heading).to_local(world);
 }
 
 }  // namespace prep

@@ -38,5 +38,12 @@ std::vector<ObjectSolid> object_solids(ObjectType type, glm::vec3 size);
 
 // A point of the world in an object's frame (position on the floor (x, z), heading radians).
 glm::vec3 to_object_frame(glm::vec3 world, glm::vec2 position, float heading);
+// The same with the heading's cosine and sine taken once, for many points in one object's frame.
+struct ObjectFrame {
+  ObjectFrame(glm::vec2 position, float heading);
+  glm::vec3 to_local(glm::vec3 world) const;
+  glm::vec2 position;
+  float cos_heading, sin_heading;
+};
 
 }  // namespace prep

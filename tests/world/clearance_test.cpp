@@ -107,6 +107,8 @@ TEST_CASE("capsule depth: the distance's negative part exactly, for capsules far
     for (const ObjectSolid& s : solids) {
       const float distance = capsule_solid_distance(capsule, s, at, heading);
       CHECK(capsule_solid_depth(capsule, s, at, heading) == std::max(0.0f, -distance));
+      const ObjectFrame frame(at, heading);
+      CHECK(framed_capsule_solid_depth({frame.to_local(a), frame.to_local(b), capsule.radius}, s) == std::max(0.0f, -distance));
       inside += distance < 0.0f;
       far += distance > 0.3f;
     }
