@@ -112,8 +112,12 @@ void World::keep_clear_of_obstacles(int index) {
       continue;
     if (!placed) {
       const MotionSet& set = *assets_->set;
-      forward_kinematics(*set.skeleton, c.pose, rt.positions, &rt.rotations);
-      volumes_->place(rt.positions, rt.rotations, rt.capsules);
+      if (rt.kinematics_of_pose) {
+        volumes_->place(rt.scratch.positions, rt.scratch.rotations, rt.capsules);
+      } else {
+        forward_kinematics(*set.skeleton, c.pose, rt.positions, &rt.rotations);
+        volumes_->place(rt.positions, rt.rotations, rt.capsules);
+      }
       placed = true;
     }
     glm::vec2 n = forward_of(o.spec.heading);
@@ -159,6 +163,7 @@ void World::displace(int index, glm::vec2 offset) {
   for (glm::vec3& p : s.previous) p += o3;
   for (glm::vec3& p : s.before_previous) p += o3;
   c.pose.root_position += o3;
+  rt.kinematics_of_pose = false;
   c.position += offset;
   c.com += o3;
 }

@@ -184,7 +184,11 @@ void World::step() {
   keep_apart();
   for (int i = 0; i < static_cast<int>(characters_.size()); ++i) keep_clear_of_obstacles(i);
   alpha_history_.push_back({time_, characters_[static_cast<size_t>(user_)].alpha});
-  if (static_cast<int>(alpha_history_.size()) > kAlphaHistory) alpha_history_.erase(alpha_history_.begin());
+  // Trimmed in blocks, so that a tick does not move the whole history (in a crowd of worlds that was a
+  // large share of the memory traffic).
+  if (static_cast<int>(alpha_history_.size()) >= 2 * kAlphaHistory) {
+    alpha_history_.erase(alpha_history_.begin(), alpha_history_.end() - kAlphaHistory);
+  }
   stage_times_.total_ms = ms_between(step_start, StageClock::now());
 }
 
@@ -580,6 +584,7 @@ void World::update_balance(int index, bool kinematics_in_scratch) {
     support_polygon(foot_points(*set.skeleton, set.body, positions, rotations), c.contacts, params_.contacts, c.support);
   }
   c.com_in_support = !c.support.empty() && c.support.contains({c.com.x, c.com.z});
+  rt.kinematics_of_pose = true;
 }
 
 void World::step_character(int index) {

@@ -302,12 +302,12 @@ struct WorldScene {
   std::optional<glm::vec3> source;      // the user's source of influence (object or opponent position)
   std::optional<glm::vec3> launch_point;  // where the user will launch at it
   float source_radius = 0.4f;
-  const std::vector<glm::vec2>* alpha_history = nullptr;  // the user's (time, alpha), last kAlphaHistory ticks
+  const std::vector<glm::vec2>* alpha_history = nullptr;  // the user's (time, alpha): World::alpha_history()
 };
 
 class World {
  public:
-  static constexpr int kAlphaHistory = 600;  // ticks kept for the alpha plot (10 s at 60 Hz)
+  static constexpr int kAlphaHistory = 600;  // ticks of alpha kept at least (10 s at 60 Hz)
 
   // The assets must hold a policy. Throws std::invalid_argument otherwise.
   World(const Scenario& scenario, std::shared_ptr<const WorldAssets> assets);
@@ -371,6 +371,8 @@ class World {
       }
     }
   }
+  // The user's (time, alpha) of every tick, oldest first: the last kAlphaHistory ticks at least (up to
+  // twice as many are kept, so that trimming it costs nothing per tick).
   const std::vector<glm::vec2>& alpha_history() const { return alpha_history_; }
   // Wall-clock milliseconds of the last step(), by stage, summed over the characters (the demo's timings).
   struct StageTimes {

@@ -24,6 +24,9 @@ struct World::Runtime {
   SynthesisState synthesis;
   SynthesisScratch scratch;
   Pose out;                      // this tick's pose being made (World::step_character)
+  // scratch.positions / rotations are the forward kinematics of the character's pose (update_balance
+  // leaves them so; displace moves the pose).
+  bool kinematics_of_pose = false;
   float next_decision = 0.0f;
   bool reseed = false;           // the next synthesized frame continues from the current position
   glm::vec3 last_displacement{0.0f};       // the locomotion's last step (m per tick)
