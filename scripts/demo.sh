@@ -3,7 +3,8 @@
 # window when there is a display; without one (a server, CI) it says so in one line, runs the course
 # headless until it is done (the goal reached and nothing playing, at most 60 s), writes a video (ffmpeg,
 # which this command installs for it) and a PNG strip of frames of the run, and prints where they are.
-#   scripts/demo.sh [prep-demo options...]      e.g. --scenario assets/scenarios/kick.json
+# The crowd (--crowd N) headless is a screenshot after 10 s instead.
+#   scripts/demo.sh [prep-demo options...]      e.g. --scenario assets/scenarios/kick.json, --crowd 200
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 demo="$here/build/prep-demo"
@@ -24,9 +25,21 @@ if [ -n "${DISPLAY:-}" ] || [ -n "${WAYLAND_DISPLAY:-}" ]; then
   "$demo" "$@" || status=$?
   # 2: no window could be opened on that display (prep-demo has said why); anything else is the demo's own.
   [ "$status" -eq 2 ] || exit "$status"
-  echo "prep: no window could be opened on the display: running the obstacle course headless instead"
+  echo "prep: no window could be opened on the display: running headless instead"
 else
-  echo "prep: no display (DISPLAY and WAYLAND_DISPLAY are unset): running the obstacle course headless"
+  echo "prep: no display (DISPLAY and WAYLAND_DISPLAY are unset): running headless"
+fi
+
+crowd=0
+for arg in "$@"; do
+  case "$arg" in --crowd | --crowd=*) crowd=1 ;; esac
+done
+if [ "$crowd" -eq 1 ]; then
+  setup
+  mkdir -p "$out"
+  "$demo" --headless --seconds 10 --screenshot "$out/crowd.png" "$@"
+  echo "prep: the crowd after 10 s is $out/crowd.png"
+  exit 0
 fi
 setup video
 
