@@ -173,8 +173,8 @@ TEST_CASE("clearance of a body standing in a bar: the penetration, the part and 
   CHECK(meter.result()[0].penetrating.empty());
 }
 
-TEST_CASE("shipped obstacle courses and the kick: no body deeper than 1 cm in an object, and the foot meets the ball") {
-  for (const char* name : {"obstacles", "close_pair", "kick"}) {
+TEST_CASE("shipped obstacle courses, the kick and the stadium lane: no body deeper than 1 cm in an object, and the foot meets the ball") {
+  for (const char* name : {"obstacles", "close_pair", "kick", "stadium"}) {
     CAPTURE(name);
     const ClearanceRun r = run_clearance(shipped(name));
     CHECK(r.goal);
