@@ -31,19 +31,11 @@ ClipViewerApp::ClipViewerApp(render::GlContext& context, DemoMotions motions, GL
   ui_ = std::make_unique<render::ImGuiLayer>(window);
   gl_description_ = gl::describe_context();
   if (!motions_.clips.empty()) camera = default_camera(clip_scene(motions_.clips[0], 0.0f, false));
-  last_frame_start_ = Clock::now();
 }
 
 void ClipViewerApp::frame(float dt) {
-  const auto frame_start = Clock::now();
-  if (!first_frame_) timings.end_frame(std::chrono::duration<double, std::milli>(frame_start - last_frame_start_).count());
-  first_frame_ = false;
-  last_frame_start_ = frame_start;
+  start_frame_timing();
   const int width = context_.width(), height = context_.height();
-  auto finish_stage = [&](int stage, Clock::time_point start, bool gl_stage) {
-    if (gl_stage && sync_stages) glFinish();
-    timings.add(stage, ms_since(start));
-  };
 
   auto t = Clock::now();
   player.advance(motions_, dt);

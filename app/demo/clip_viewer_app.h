@@ -62,8 +62,6 @@ class ClipViewerApp final : public WindowApp {
   std::map<std::string, glm::vec4> panel_rects_;
   glm::mat4 last_view_projection_{1.0f};
   std::string gl_description_;
-  Clock::time_point last_frame_start_;
-  bool first_frame_ = true;
 };
 
 // The camera that frames a clip's character from its front-right, at the usual distance.

@@ -34,7 +34,6 @@ CrowdApp::CrowdApp(render::GlContext& context, Crowd& crowd, GLFWwindow* window,
   renderer_ = std::make_unique<render::Renderer>(settings);
   ui_ = std::make_unique<render::ImGuiLayer>(window);
   camera = crowd_camera(crowd_);
-  last_frame_start_ = Clock::now();
 }
 
 CrowdApp::~CrowdApp() = default;
@@ -97,15 +96,8 @@ void CrowdApp::build_scene() {
 }
 
 void CrowdApp::frame(float dt) {
-  const auto frame_start = Clock::now();
-  if (!first_frame_) timings.end_frame(std::chrono::duration<double, std::milli>(frame_start - last_frame_start_).count());
-  first_frame_ = false;
-  last_frame_start_ = frame_start;
+  start_frame_timing();
   const int width = context_.width(), height = context_.height();
-  auto finish_stage = [&](int stage, Clock::time_point start, bool gl_stage) {
-    if (gl_stage && sync_stages) glFinish();
-    timings.add(stage, ms_since(start));
-  };
 
   auto t = Clock::now();
   advance(dt);

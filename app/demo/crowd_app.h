@@ -59,8 +59,6 @@ class CrowdApp final : public WindowApp {
   std::vector<std::pair<float, size_t>> by_distance_;  // (distance to the eye, character) for the detailed bodies
   float pending_ = 0.0f;                                // s of simulation owed to the crowd
   RunningAverage engine_ms_{60};
-  Clock::time_point last_frame_start_;
-  bool first_frame_ = true;
 };
 
 // The camera at the crowd's near edge (where the lanes' balls are), looking back across the lanes toward

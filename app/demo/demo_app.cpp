@@ -36,7 +36,6 @@ DemoApp::DemoApp(render::GlContext& context, WorldSession& session, GLFWwindow* 
   params_path = "params.json";
   initial_goal_ = session_.goal();
   reset_camera();
-  last_frame_start_ = Clock::now();
 }
 
 DemoApp::~DemoApp() {
@@ -159,18 +158,11 @@ static void blit_rects(unsigned int from, unsigned int to, const std::vector<glm
 }
 
 void DemoApp::frame(float dt) {
-  const auto frame_start = Clock::now();
   // The first frames compile shaders and build the font atlas: the averages start after them.
   const bool timed = frames_drawn_ >= kUntimedFrames;
-  if (timed && frames_drawn_ > kUntimedFrames)
-    timings.end_frame(std::chrono::duration<double, std::milli>(frame_start - last_frame_start_).count());
+  start_frame_timing(timed);
   ++frames_drawn_;
-  last_frame_start_ = frame_start;
   const int width = context_.width(), height = context_.height();
-  auto finish_stage = [&](int stage, Clock::time_point start, bool gl_stage) {
-    if (gl_stage && sync_stages) glFinish();
-    if (timed) timings.add(stage, ms_since(start));
-  };
 
   auto t = Clock::now();
   session_.steer(steer_direction());
@@ -182,18 +174,18 @@ void DemoApp::frame(float dt) {
   engine_timings.balance.add(st.balance_ms);
   engine_timings.total.add(st.total_ms);
   engine_timings.ticks.add(ticks);
-  finish_stage(kUpdate, t, false);
+  finish_stage(kUpdate, t, false, timed);
 
   t = Clock::now();
   scene_ = session_.scene(view.show_balance);
   measure_clearance();
   update_camera(dt);
   renderer_->prepare(scene_);
-  finish_stage(kScene, t, true);
+  finish_stage(kScene, t, true, timed);
 
   t = Clock::now();
   renderer_->shadow_pass();
-  finish_stage(kShadow, t, true);
+  finish_stage(kShadow, t, true, timed);
 
   // The panels are laid out before the scene is drawn (ImGui's frame logic; nothing is drawn yet), so that
   // this frame's panel rectangles are known to the main pass: the scene is not shaded under them, and their
@@ -218,7 +210,7 @@ void DemoApp::frame(float dt) {
   renderer_->main_pass(view.camera, 0, 0, width, height);
   last_view_projection_ = view.camera.view_projection(static_cast<float>(width) / std::max(height, 1));
   overlay_->draw(scene_, last_view_projection_);
-  finish_stage(kMainPass, t, true);
+  finish_stage(kMainPass, t, true, timed);
 
   // Drawing the panels (ImGui's textured, blended glyph quads) is a quarter of a frame on llvmpipe, and
   // idle panels change only in their figures. So while nobody works them (no mouse over them, no key held,

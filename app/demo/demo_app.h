@@ -142,7 +142,6 @@ class DemoApp final : public WindowApp {
   std::map<std::string, glm::vec4> panel_rects_;
   glm::mat4 last_view_projection_{1.0f};
   std::string gl_description_;
-  Clock::time_point last_frame_start_;
   int frames_drawn_ = 0;
   static constexpr int kUntimedFrames = 3;
   int panel_frames_ = 0;

@@ -1,5 +1,6 @@
 // What the window (windowed.cpp) and the headless runs drive: one frame at a time, and the input.
-// Two applications implement it: DemoApp (the scenario demo, demo_app.h) and ClipViewerApp (clips alone).
+// Three applications implement it: DemoApp (the scenario demo, demo_app.h), ClipViewerApp (clips alone)
+// and CrowdApp (the crowd, crowd_app.h).
 #pragma once
 
 #include <string>
@@ -35,6 +36,17 @@ class WindowApp {
   bool quit_requested = false;
   bool sync_stages = false;  // glFinish after each GL stage, so each stage's ms is its own (costs fps)
   Timings timings;
+
+ protected:
+  // The applications' frame timing: start_frame_timing() closes the previous frame's time in `timings`
+  // (from one start to the next, when both frames are measured), finish_stage() adds a stage's
+  // milliseconds, after glFinish for a GL stage while sync_stages (so that each stage's time is its own).
+  void start_frame_timing(bool measured = true);
+  void finish_stage(int stage, Clock::time_point start, bool gl_stage, bool measured = true);
+
+ private:
+  Clock::time_point last_frame_start_{};
+  bool measured_frame_before_ = false;
 };
 
 }  // namespace prep::demo
