@@ -170,7 +170,7 @@ void ClipViewerApp::timings_panel() {
 }
 
 void ClipViewerApp::on_key(int key) {
-  const float step = 0.15f;
+  if (camera.key(key)) return;
   const Clip* clip = motions_.clips.empty() ? nullptr : &motions_.clips[player.clip].clip;
   switch (key) {
     case GLFW_KEY_SPACE: player.playing = !player.playing; break;
@@ -184,12 +184,6 @@ void ClipViewerApp::on_key(int key) {
       break;
     case GLFW_KEY_UP: player.select(motions_, player.clip - 1); break;
     case GLFW_KEY_DOWN: player.select(motions_, player.clip + 1); break;
-    case GLFW_KEY_Q: camera.orbit(-step, 0.0f); break;
-    case GLFW_KEY_E: camera.orbit(step, 0.0f); break;
-    case GLFW_KEY_R: camera.orbit(0.0f, step); break;
-    case GLFW_KEY_F: camera.orbit(0.0f, -step); break;
-    case GLFW_KEY_Z: camera.zoom(1.0f / 1.15f); break;
-    case GLFW_KEY_X: camera.zoom(1.15f); break;
     case GLFW_KEY_C: follow = !follow; break;
     case GLFW_KEY_P: show_panels = !show_panels; break;
     case GLFW_KEY_ESCAPE: quit_requested = true; break;
@@ -198,16 +192,11 @@ void ClipViewerApp::on_key(int key) {
 }
 
 void ClipViewerApp::on_drag(float dx, float dy, bool pan) {
-  if (pan) {
-    const float metres_per_pixel = 2.0f * camera.distance * std::tan(0.5f * camera.fov_y) / std::max(context_.height(), 1);
-    camera.pan(-dx * metres_per_pixel, dy * metres_per_pixel);
-    follow = false;
-  } else {
-    camera.orbit(-dx * 0.008f, dy * 0.008f);
-  }
+  camera.drag(dx, dy, pan, context_.height());
+  if (pan) follow = false;
 }
 
-void ClipViewerApp::on_scroll(float steps) { camera.zoom(std::pow(0.9f, steps)); }
+void ClipViewerApp::on_scroll(float steps) { camera.scroll(steps); }
 
 std::string ClipViewerApp::closing_report() const {
   if (motions_.clips.empty()) return "no clips";

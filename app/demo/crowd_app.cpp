@@ -139,18 +139,12 @@ void CrowdApp::draw_panel() {
 }
 
 void CrowdApp::on_key(int key) {
-  const float step = 0.08f;
+  if (camera.key(key)) return;
   const float metres = 0.05f * camera.distance;
   const glm::vec2 forward(-std::sin(camera.yaw), -std::cos(camera.yaw));  // the view's direction on the floor
   const glm::vec2 right(-forward.y, forward.x);
   auto move = [&](glm::vec2 d) { camera.target += glm::vec3(d.x, 0.0f, d.y) * metres; };
   switch (key) {
-    case GLFW_KEY_Q: camera.orbit(-step, 0.0f); break;
-    case GLFW_KEY_E: camera.orbit(step, 0.0f); break;
-    case GLFW_KEY_R: camera.orbit(0.0f, step); break;
-    case GLFW_KEY_F: camera.orbit(0.0f, -step); break;
-    case GLFW_KEY_Z: camera.zoom(1.0f / 1.15f); break;
-    case GLFW_KEY_X: camera.zoom(1.15f); break;
     case GLFW_KEY_W: case GLFW_KEY_UP: move(forward); break;
     case GLFW_KEY_S: case GLFW_KEY_DOWN: move(-forward); break;
     case GLFW_KEY_D: case GLFW_KEY_RIGHT: move(right); break;
@@ -162,16 +156,9 @@ void CrowdApp::on_key(int key) {
   }
 }
 
-void CrowdApp::on_drag(float dx, float dy, bool pan) {
-  if (pan) {
-    const float metres_per_pixel = 2.0f * camera.distance * std::tan(0.5f * camera.fov_y) / std::max(context_.height(), 1);
-    camera.pan(-dx * metres_per_pixel, dy * metres_per_pixel);
-  } else {
-    camera.orbit(-dx * 0.008f, dy * 0.008f);
-  }
-}
+void CrowdApp::on_drag(float dx, float dy, bool pan) { camera.drag(dx, dy, pan, context_.height()); }
 
-void CrowdApp::on_scroll(float steps) { camera.zoom(std::pow(0.9f, steps)); }
+void CrowdApp::on_scroll(float steps) { camera.scroll(steps); }
 
 std::string CrowdApp::closing_report() const {
   char text[160];

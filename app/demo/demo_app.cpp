@@ -380,7 +380,7 @@ glm::vec2 DemoApp::steer_direction() const {
 }
 
 void DemoApp::on_key(int key) {
-  const float step = 0.15f;
+  if (view.camera.key(key)) return;
   switch (key) {
     case GLFW_KEY_1:
     case GLFW_KEY_2:
@@ -406,12 +406,6 @@ void DemoApp::on_key(int key) {
     case GLFW_KEY_B: view.show_balance = !view.show_balance; break;
     case GLFW_KEY_O: view.show_clearance = !view.show_clearance; break;
     case GLFW_KEY_H: view.show_panels = !view.show_panels; break;
-    case GLFW_KEY_Q: view.camera.orbit(-step, 0.0f); break;
-    case GLFW_KEY_E: view.camera.orbit(step, 0.0f); break;
-    case GLFW_KEY_R: view.camera.orbit(0.0f, step); break;
-    case GLFW_KEY_F: view.camera.orbit(0.0f, -step); break;
-    case GLFW_KEY_Z: view.camera.zoom(1.0f / 1.15f); break;
-    case GLFW_KEY_X: view.camera.zoom(1.15f); break;
     case GLFW_KEY_C: view.follow = !view.follow; break;
     case GLFW_KEY_ESCAPE: quit_requested = true; break;
     default: break;
@@ -419,17 +413,11 @@ void DemoApp::on_key(int key) {
 }
 
 void DemoApp::on_drag(float dx, float dy, bool pan) {
-  if (pan) {
-    const render::Camera& c = view.camera;
-    const float metres_per_pixel = 2.0f * c.distance * std::tan(0.5f * c.fov_y) / std::max(context_.height(), 1);
-    view.camera.pan(-dx * metres_per_pixel, dy * metres_per_pixel);
-    view.follow = false;
-  } else {
-    view.camera.orbit(-dx * 0.008f, dy * 0.008f);
-  }
+  view.camera.drag(dx, dy, pan, context_.height());
+  if (pan) view.follow = false;
 }
 
-void DemoApp::on_scroll(float steps) { view.camera.zoom(std::pow(0.9f, steps)); }
+void DemoApp::on_scroll(float steps) { view.camera.scroll(steps); }
 
 void DemoApp::on_click(glm::vec2 pixel, bool right) {
   if (right) {

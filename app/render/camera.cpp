@@ -1,5 +1,7 @@
 #include "app/render/camera.h"
 
+#include <GLFW/glfw3.h>
+
 #include <algorithm>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
@@ -52,5 +54,29 @@ bool project_to_pixel(const glm::mat4& view_projection, const glm::vec3& point, 
   pixel.y = (1.0f - (ndc.y * 0.5f + 0.5f)) * height;
   return true;
 }
+
+bool Camera::key(int glfw_key) {
+  constexpr float kStep = 0.15f;
+  switch (glfw_key) {
+    case GLFW_KEY_Q: orbit(-kStep, 0.0f); return true;
+    case GLFW_KEY_E: orbit(kStep, 0.0f); return true;
+    case GLFW_KEY_R: orbit(0.0f, kStep); return true;
+    case GLFW_KEY_F: orbit(0.0f, -kStep); return true;
+    case GLFW_KEY_Z: zoom(1.0f / 1.15f); return true;
+    case GLFW_KEY_X: zoom(1.15f); return true;
+    default: return false;
+  }
+}
+
+void Camera::drag(float dx, float dy, bool pan_view, int height) {
+  if (pan_view) {
+    const float metres_per_pixel = 2.0f * distance * std::tan(0.5f * fov_y) / std::max(height, 1);
+    pan(-dx * metres_per_pixel, dy * metres_per_pixel);
+  } else {
+    orbit(-dx * 0.008f, dy * 0.008f);
+  }
+}
+
+void Camera::scroll(float steps) { zoom(std::pow(0.9f, steps)); }
 
 }  // namespace prep::render

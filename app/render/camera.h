@@ -30,6 +30,14 @@ struct Camera {
   void pan(float right, float up);
   // Follow: moves the target toward `point` (horizontally, height kept) with time constant tau seconds.
   void follow(const glm::vec3& point, float dt, float tau = 0.35f);
+
+  // The demos' camera input. Keys (GLFW key codes): Q/E orbit, R/F tilt (0.15 rad a press), Z/X zoom;
+  // returns whether the key was one of them. A mouse drag of dx, dy pixels orbits, or with `pan` moves the
+  // target in the view plane so that the floor under the cursor follows it (a viewport `height` pixels
+  // high). A wheel step zooms by 10%.
+  bool key(int glfw_key);
+  void drag(float dx, float dy, bool pan, int height);
+  void scroll(float steps);
 };
 
 // Pixel coordinates (x right, y down, origin at the image's top-left corner) of a world point, for an image
