@@ -16,8 +16,7 @@ void forward_kinematics(const Skeleton& skeleton, const Pose& pose, std::vector<
   for (size_t i = 1; i < n; ++i) {
     const Joint& j = skeleton.joints[i];
     const size_t p = static_cast<size_t>(j.parent);
-    world_positions[i] = world_positions[p] + rot[p] * j.offset;
-    rot[i] = rot[p] * pose.rotations[i];
+    place_joint(world_positions[p], rot[p], j.offset, pose.rotations[i], world_positions[i], rot[i]);
   }
 }
 

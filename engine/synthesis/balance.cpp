@@ -238,8 +238,7 @@ void moved_kinematics(const Skeleton& skeleton, const BalanceModel& model, const
     const size_t p = static_cast<size_t>(joint.parent);  // never the root: the root is not upper body
     const int k = model.optimized_index[jj];
     const glm::quat& q = k >= 0 ? local[static_cast<size_t>(k)] : pose.rotations[jj];
-    rotations[jj] = rotations[p] * q;
-    positions[jj] = positions[p] + rotations[p] * joint.offset;
+    place_joint(positions[p], rotations[p], joint.offset, q, positions[jj], rotations[jj]);
   }
 }
 

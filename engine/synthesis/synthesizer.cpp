@@ -22,8 +22,7 @@ void chain_kinematics(const Skeleton& skeleton, const std::vector<int>& joints, 
       continue;
     }
     const size_t p = static_cast<size_t>(parent);
-    positions[i] = positions[p] + rotations[p] * skeleton.joints[i].offset;
-    rotations[i] = rotations[p] * pose.rotations[i];
+    place_joint(positions[p], rotations[p], skeleton.joints[i].offset, pose.rotations[i], positions[i], rotations[i]);
   }
 }
 
