@@ -40,11 +40,23 @@ void foot_height_changes(const Skeleton& skeleton, const BodyMap& body, const Po
 
 glm::quat heading_rotation(float heading) { return glm::angleAxis(heading, glm::vec3(0.0f, 1.0f, 0.0f)); }
 
+glm::quat heading_rotation_of(const glm::quat& root_rotation) {
+  // The turn about +Y taking +Z to the root's forward on the floor, (sin h, cos h) = (f.x, f.z) / |f|: the
+  // half-angle quaternion normalize(1 + cos h, sin h * Y), which heading_rotation(heading_of(root)) gives
+  // through an atan2 and a sine and cosine.
+  const glm::vec3 forward = root_rotation * glm::vec3(0.0f, 0.0f, 1.0f);
+  const float length = std::sqrt(forward.x * forward.x + forward.z * forward.z);
+  if (!(length > 1e-6f)) return glm::quat(1.0f, 0.0f, 0.0f, 0.0f);  // facing straight up or down: heading_of's atan2(0, 0)
+  const float c = forward.z / length, s = forward.x / length;
+  if (1.0f + c < 1e-6f) return glm::quat(0.0f, 0.0f, 1.0f, 0.0f);  // facing -Z: a half turn
+  return glm::normalize(glm::quat(1.0f + c, 0.0f, s, 0.0f));
+}
+
 glm::quat blend_root_rotation(const glm::quat& locomotion_root, const glm::quat& reference_root, float w_root) {
   if (w_root <= 0.0f) return locomotion_root;  // exactly the locomotion at alpha = 0
-  const glm::quat loco_heading = heading_rotation(heading_of(locomotion_root));
-  const glm::quat loco_tilt = glm::inverse(loco_heading) * locomotion_root;
-  const glm::quat ref_tilt = glm::inverse(heading_rotation(heading_of(reference_root))) * reference_root;
+  const glm::quat loco_heading = heading_rotation_of(locomotion_root);
+  const glm::quat loco_tilt = glm::conjugate(loco_heading) * locomotion_root;
+  const glm::quat ref_tilt = glm::conjugate(heading_rotation_of(reference_root)) * reference_root;
   return glm::normalize(loco_heading * blend_rotation(loco_tilt, ref_tilt, w_root));  // Eq. 2 on the root
 }
 

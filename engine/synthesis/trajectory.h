@@ -40,5 +40,7 @@ glm::quat blend_root_rotation(const glm::quat& locomotion_root, const glm::quat&
 
 // Yaw rotation about +Y by `heading` radians (a character at heading h faces (sin h, 0, cos h)).
 glm::quat heading_rotation(float heading);
+// heading_rotation(heading_of(root_rotation)), without trigonometry.
+glm::quat heading_rotation_of(const glm::quat& root_rotation);
 
 }  // namespace prep

@@ -2,6 +2,8 @@
 
 #include <doctest/doctest.h>
 
+#include <random>
+
 #include <cmath>
 
 #include "engine/synthesis/synthesizer.h"
@@ -91,3 +93,18 @@ TEST_CASE("height of a joint relative to the root walks its chain") {
 }
 
 }  // namespace prep
+
+TEST_CASE("the root's heading rotation without trigonometry is heading_rotation(heading_of(root))") {
+  using namespace prep;
+  std::mt19937 rng(31);
+  std::normal_distribution<float> n(0.0f, 1.0f);
+  for (int k = 0; k < 2000; ++k) {
+    glm::quat root = glm::normalize(glm::quat(n(rng), n(rng), n(rng), n(rng)));
+    if (k == 0) root = glm::angleAxis(3.14159265f, glm::vec3(0.0f, 1.0f, 0.0f));  // facing -Z exactly
+    const glm::quat expected = heading_rotation(heading_of(root));
+    const glm::quat got = heading_rotation_of(root);
+    CHECK(std::abs(std::abs(glm::dot(expected, got)) - 1.0f) < 1e-6f);  // the same rotation (q and -q alike)
+    CHECK(got.x == 0.0f);
+    CHECK(got.z == 0.0f);
+  }
+}
