@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "engine/motion/kinematics.h"
 #include "engine/synthesis/blending.h"
 
 namespace prep {
@@ -20,6 +21,19 @@ float height_relative_to_root(const Skeleton& skeleton, const Pose& pose, int jo
   // Walk up from the joint: a point p in joint j's frame is offset_j + R_j * p in its parent's frame.
   // Chains are short (hip, knee, ankle), so this is a few quaternion rotations rather than a
   // whole-skeleton pass. The joint's own origin starts as p = 0.
+#if defined(__SSE2__)
+  using namespace kinematics_detail;  // the same register arithmetic as forward kinematics
+  __m128 p = _mm_setzero_ps();
+  int j = joint;
+  while (j > 0) {
+    const Joint& J = skeleton.joints[static_cast<size_t>(j)];
+    p = _mm_add_ps(load_vec3(J.offset), rotate(load_quat(pose.rotations[static_cast<size_t>(j)]), p));
+    j = J.parent;
+  }
+  glm::vec3 result;
+  store_vec3(result, rotate(load_quat(pose.rotations[0]), p));
+  return result.y;
+#else
   glm::vec3 p(0.0f);
   int j = joint;
   while (j > 0) {
@@ -28,6 +42,7 @@ float height_relative_to_root(const Skeleton& skeleton, const Pose& pose, int jo
     j = J.parent;
   }
   return (pose.rotations[0] * p).y;
+#endif
 }
 
 void foot_height_changes(const Skeleton& skeleton, const BodyMap& body, const Pose& locomotion, const Pose& blended,
