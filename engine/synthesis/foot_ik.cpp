@@ -97,15 +97,19 @@ glm::vec3 solve_leg(const Skeleton& skeleton, const LegChain& leg, const IkParam
   const glm::quat r0 = turn_between(ac_ab_0, ac_ab_1, axis);  // at the hip, in world
   const glm::quat r1 = turn_between(ba_bc_0, ba_bc_1, axis);  // at the knee, in world
   // Then swing the whole leg about the hip so that the (new) ankle direction points at the target.
-  const glm::vec3 c_bent = a + r0 * (b - a) + (r0 * r1) * (c - b);
-  const glm::quat r2 = rotation_between(c_bent - a, to_target);
+  const glm::quat r01 = r0 * r1;
+  const glm::vec3 bent = r0 * (b - a) + r01 * (c - b);  // hip to ankle, the knee bent
+  const glm::quat r2 = rotation_between(bent, to_target);
 
+  // The new world rotations, then the local ones. The world rotations are unit quaternions (normalized
+  // here), so their inverses are their conjugates.
   const int hip_parent = skeleton.joints[hip].parent;
   const glm::quat parent_world = hip_parent >= 0 ? wr[static_cast<size_t>(hip_parent)] : glm::quat(1, 0, 0, 0);
-  const glm::quat hip_world = glm::normalize(r2 * r0 * wr[hip]);
-  const glm::quat knee_world = glm::normalize(r2 * r0 * r1 * wr[knee]);
-  pose.rotations[hip] = glm::normalize(glm::inverse(parent_world) * hip_world);
-  pose.rotations[knee] = glm::normalize(glm::inverse(hip_world) * knee_world);
+  const glm::quat r20 = r2 * r0;
+  const glm::quat hip_world = glm::normalize(r20 * wr[hip]);
+  const glm::quat knee_world = glm::normalize(r20 * r1 * wr[knee]);
+  pose.rotations[hip] = glm::normalize(glm::conjugate(parent_world) * hip_world);
+  pose.rotations[knee] = glm::normalize(glm::conjugate(hip_world) * knee_world);
   // The shin may not be the ankle's direct parent in every skeleton: compose the joints between them.
   glm::quat between(1, 0, 0, 0);
   for (int j = skeleton.joints[ankle].parent; j != static_cast<int>(knee); j = skeleton.joints[static_cast<size_t>(j)].parent) {
@@ -113,7 +117,7 @@ glm::vec3 solve_leg(const Skeleton& skeleton, const LegChain& leg, const IkParam
   }
   const glm::quat above_ankle = knee_world * between;
   pose.rotations[ankle] = glm::normalize(glm::inverse(above_ankle) * foot_world);
-  return a + r2 * (r0 * (b - a) + (r0 * r1) * (c - b));
+  return a + r2 * bent;
 }
 
 FrameContacts select_pinned_points(const FrameContacts& contacts, const std::array<float, 2>& heel_speed,
