@@ -277,20 +277,23 @@ Renderer::Renderer(const RenderSettings& settings) : settings_(settings) {
 
   // Capsules: per-vertex offset + end flag, per-instance a/radius, b/glow, colour.
   {
-    std::vector<float> v;
-    std::vector<unsigned> idx;
-    capsule_mesh(20, 7, v, idx);
-    capsule_index_count_ = static_cast<int>(idx.size());
-    glGenVertexArrays(1, &capsule_vao_);
-    glBindVertexArray(capsule_vao_);
-    glGenBuffers(1, &capsule_vbo_);
-    glBindBuffer(GL_ARRAY_BUFFER, capsule_vbo_);
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(v.size() * sizeof(float)), v.data(), GL_STATIC_DRAW);
-    bind_float_attribute(0, 3, 4 * sizeof(float), 0, false);
-    bind_float_attribute(1, 1, 4 * sizeof(float), 3 * sizeof(float), false);
-    glGenBuffers(1, &capsule_ibo_);
-    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, capsule_ibo_);
-    glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(idx.size() * sizeof(unsigned)), idx.data(), GL_STATIC_DRAW);
+    // A capsule mesh of `slices` x `half_rings` into its own vertex array; returns its index count.
+    auto upload_capsule_mesh = [](int slices, int half_rings, GLuint& vao, GLuint& vbo, GLuint& ibo) {
+      std::vector<float> v;
+      std::vector<unsigned> idx;
+      capsule_mesh(slices, half_rings, v, idx);
+      glGenVertexArrays(1, &vao);
+      glBindVertexArray(vao);
+      glGenBuffers(1, &vbo);
+      glBindBuffer(GL_ARRAY_BUFFER, vbo);
+      glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(v.size() * sizeof(float)), v.data(), GL_STATIC_DRAW);
+      bind_float_attribute(0, 3, 4 * sizeof(float), 0, false);
+      bind_float_attribute(1, 1, 4 * sizeof(float), 3 * sizeof(float), false);
+      glGenBuffers(1, &ibo);
+      glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ibo);
+      glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(idx.size() * sizeof(unsigned)), idx.data(), GL_STATIC_DRAW);
+      return static_cast<int>(idx.size());
+    };
     auto bind_instances = [](GLuint& buffer) {
       glGenBuffers(1, &buffer);
       glBindBuffer(GL_ARRAY_BUFFER, buffer);
@@ -298,6 +301,7 @@ Renderer::Renderer(const RenderSettings& settings) : settings_(settings) {
       bind_float_attribute(3, 4, sizeof(CapsuleInstance), offsetof(CapsuleInstance, b_glow), true);
       bind_float_attribute(4, 3, sizeof(CapsuleInstance), offsetof(CapsuleInstance, colour), true);
     };
+    capsule_index_count_ = upload_capsule_mesh(20, 7, capsule_vao_, capsule_vbo_, capsule_ibo_);
     bind_instances(capsule_instances_);
     // The flagged capsules: the same mesh with instances of their own (GL 3.3 cannot start an instanced
     // draw part-way into a buffer), so they are drawn in a later pass than the bodies' capsules.
@@ -309,20 +313,7 @@ Renderer::Renderer(const RenderSettings& settings) : settings_(settings) {
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, capsule_ibo_);
     bind_instances(flagged_instances_);
     // Light bodies: a capsule of 6 slices and one ring per end (36 triangles against 560).
-    std::vector<float> light_v;
-    std::vector<unsigned> light_idx;
-    capsule_mesh(6, 1, light_v, light_idx);
-    light_index_count_ = static_cast<int>(light_idx.size());
-    glGenVertexArrays(1, &light_vao_);
-    glBindVertexArray(light_vao_);
-    glGenBuffers(1, &light_vbo_);
-    glBindBuffer(GL_ARRAY_BUFFER, light_vbo_);
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(light_v.size() * sizeof(float)), light_v.data(), GL_STATIC_DRAW);
-    bind_float_attribute(0, 3, 4 * sizeof(float), 0, false);
-    bind_float_attribute(1, 1, 4 * sizeof(float), 3 * sizeof(float), false);
-    glGenBuffers(1, &light_ibo_);
-    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, light_ibo_);
-    glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(light_idx.size() * sizeof(unsigned)), light_idx.data(), GL_STATIC_DRAW);
+    light_index_count_ = upload_capsule_mesh(6, 1, light_vao_, light_vbo_, light_ibo_);
     bind_instances(light_instances_);
   }
   // Boxes: per-vertex position + normal, per-instance model matrix (4 columns) and colour/glow.
