@@ -34,6 +34,7 @@ struct LimbFrame {
 };
 
 constexpr float kMaxLoadedDorsiflexion = 0.70f;  // rad (40 degrees)
+constexpr float kMaxSwingPlantarflexion = 0.82f; // rad (47 degrees, inside the documented 50)
 
 // The heading and the toe-up pitch of a foot's world rotation.
 void yaw_pitch(const glm::quat& q, float& yaw, float& pitch) {
@@ -288,12 +289,13 @@ Clip realize(const Draft& draft, RealizeReport* report) {
       pose.rotations[S(limb.middle)] = middle_local;
       pose.rotations[S(limb.end)] = glm::normalize(glm::inverse(middle_world) * h.end_rotation);
       if (limb.is_leg && !in_support[S(f)]) {
-        // A swinging foot keeps within the ankle's range: plantarflex it (about the ankle) if the blend of
-        // the keyed and held orientations would dorsiflex it too far.
+        // A swinging foot keeps within the ankle's range: turn it about the ankle if the blend of the keyed
+        // and held orientations would dorsiflex or plantarflex it too far (a kneeling foot lifting off).
         const glm::vec3 forward = pose.rotations[S(limb.end)] * glm::vec3(0, 0, 1);
         const float dorsiflexion = std::asin(std::clamp(forward.y, -1.0f, 1.0f));
-        if (dorsiflexion > kMaxLoadedDorsiflexion) {
-          const glm::quat fix = glm::angleAxis(dorsiflexion - kMaxLoadedDorsiflexion, glm::vec3(1, 0, 0));
+        const float within = std::clamp(dorsiflexion, -kMaxSwingPlantarflexion, kMaxLoadedDorsiflexion);
+        if (dorsiflexion != within) {
+          const glm::quat fix = glm::angleAxis(dorsiflexion - within, glm::vec3(1, 0, 0));
           pose.rotations[S(limb.end)] = glm::normalize(pose.rotations[S(limb.end)] * fix);
           h.end_rotation = glm::normalize(h.end_rotation * fix);
           h.toe_world = glm::normalize(h.toe_world * fix);

@@ -1,4 +1,4 @@
-// duck (walk through under a beam ~1.2 m high) and crawl (on hands and knees under a bar ~0.65 m high).
+// duck (walk through under a beam ~1.2 m high) and crawl (on hands and knees, low, under a bar ~0.58 m high).
 #include <algorithm>
 #include <cmath>
 
@@ -112,23 +112,33 @@ GeneratedClip make_crawl(const std::string& name, Obstacle* bar) {
   spec.resume_phase = 0.0f;
   spec.walk_out_s = T;
 
-  // The crawling posture: trunk nearly horizontal, thighs vertical, shins on the floor, arms under the
-  // shoulders with elbows slightly bent, neck extended to look ahead.
-  const float root_crawl_y = 0.48f;
+  // The crawling posture: a low crawl, the trunk horizontal, the thighs leaning back from the knees, shins
+  // on the floor, the hands under the shoulders with the elbows bent back along the body, the neck extended
+  // to look ahead.
+  const float root_crawl_y = 0.43f;
+  // The knee is behind the hip by the thigh's lean: the hip joint (behind the root, the pelvis tilted
+  // forward) at its crawling height, the knee joint kKneeOnFloor above the floor. The keyed hip and knee
+  // angles follow the lean, so that the keyed leg is the one IK puts between the hip and the planted foot.
+  constexpr float kKneeOnFloor = 0.05f;
+  constexpr float kPelvisCrawlTilt = 84 * kDeg;
+  const float hip_y = root_crawl_y - anthropometry::kPelvisAboveHip * std::cos(kPelvisCrawlTilt);
+  const float hip_behind_root = anthropometry::kPelvisAboveHip * std::sin(kPelvisCrawlTilt);
+  const float thigh_lean = std::acos(std::min(1.0f, (hip_y - kKneeOnFloor) / anthropometry::kThigh));
+  const float knee_behind_root = hip_behind_root + anthropometry::kThigh * std::sin(thigh_lean);
   auto crawl_pose = [&](float z) {
     DofPose d = standing_pose({0.0f, z}, root_crawl_y);
-    d[kPelvisTilt] = 72 * kDeg;
-    d[kSpineFlex] = 19 * kDeg;
+    d[kPelvisTilt] = kPelvisCrawlTilt;
+    d[kSpineFlex] = 12 * kDeg;
     d[kNeckFlex] = 8 * kDeg;
     d[kHeadFlex] = -4 * kDeg;
     for (int side = 0; side < 2; ++side) {
-      d.at(side, kHipFlex) = 75 * kDeg;
-      d.at(side, kKneeFlex) = 100 * kDeg;
-      d.at(side, kAnkleDorsi) = -35 * kDeg;
+      d.at(side, kHipFlex) = kPelvisCrawlTilt - thigh_lean;   // the thigh leaning back from the knee
+      d.at(side, kKneeFlex) = 92 * kDeg - thigh_lean;        // the shin back along the floor
+      d.at(side, kAnkleDorsi) = -25 * kDeg;
       d.at(side, kShoulderFlex) = 92 * kDeg;  // arms vertical at mid-support, sweeping +-15 degrees
       d.at(side, kShoulderAbduct) = 8 * kDeg;
       d.at(side, kShoulderTwist) = 0.0f;
-      d.at(side, kElbowFlex) = 10 * kDeg;
+      d.at(side, kElbowFlex) = 60 * kDeg;
       d.at(side, kWristFlex) = -10 * kDeg;
     }
     return d;
@@ -178,6 +188,8 @@ GeneratedClip make_crawl(const std::string& name, Obstacle* bar) {
       d.at(side, kAnkleDorsi) = 25 * kDeg;
       d.at(side, kShoulderFlex) = 75 * kDeg;
       d.at(side, kElbowFlex) = 15 * kDeg;
+      d.at(side, kShoulderTwist) = 30 * kDeg;  // the forearms turning as the palms leave the floor
+      d.at(side, kWristFlex) = -40 * kDeg;
     }
     key(feet_land + 0.1f, d);
   }
@@ -196,9 +208,9 @@ GeneratedClip make_crawl(const std::string& name, Obstacle* bar) {
     auto& feet = spec.feet[static_cast<size_t>(side)];
     if (side == 1) feet.push_back({0.0f, feet_off, Hold::RollingFoot, false, {}, 0.0f, 0.0f});
     else feet.push_back({0.45f, feet_off, Hold::RollingFoot, true, {x, feet_z}, 0.05f, 0.06f});
-    // On all fours the ankle is a shin's length behind the knee, the knee under the hip.
+    // On all fours the ankle is a shin's length behind the knee, the knee behind the hip by the thigh's lean.
     const float knee_lead = side == 0 ? 0.0f : 0.5f;  // the left knee steps with the right hand
-    float z = root_start - shin + 0.02f;
+    float z = root_start - knee_behind_root - shin;
     float on = knees_down;
     for (int c = 0; c < kCycles; ++c) {
       const float swing_start = crawl_from + (static_cast<float>(c) + knee_lead) * kCrawlCycle;
@@ -226,7 +238,7 @@ GeneratedClip make_crawl(const std::string& name, Obstacle* bar) {
   if (bar) {
     const float fps = spec.gait.fps;
     const auto frame = [&](float t) { return static_cast<int>(std::lround((t + spec.walk_in_s) * fps)); };
-    *bar = under_obstacle(g.clip, frame(crawl_from), frame(crawl_to), 0.65f, 0.6f);
+    *bar = under_obstacle(g.clip, frame(crawl_from), frame(crawl_to), 0.58f, 0.53f);
   }
   return g;
 }

@@ -193,6 +193,7 @@ TEST_CASE("shipped obstacle courses, the kick and the stadium lane: no body deep
 
 TEST_CASE("obstacles of other sizes: the clip is fitted (lower crouch, higher flight) and passes clear") {
   Scenario s = shipped("obstacles");
+  s.objects[0].size.y = 0.55f;  // the lowest bar a scenario may hold
   s.objects[1].size.y = 1.02f;  // the beam 18 cm lower than the duck clip was made for
   s.objects[2].size.y = 0.53f;  // the hurdle 8 cm taller than the jump's
   const WorldAssets& a = *clearance_test_assets();
@@ -200,6 +201,10 @@ TEST_CASE("obstacles of other sizes: the clip is fitted (lower crouch, higher fl
                                         ObjectType::Beam, s.objects[1].size);
   const ObstacleFit jump = fit_obstacle(a.sweeps[static_cast<size_t>(TargetAction::Jump)], a.target(TargetAction::Jump),
                                         ObjectType::Hurdle, s.objects[2].size);
+  const ObstacleFit crawl = fit_obstacle(a.sweeps[static_cast<size_t>(TargetAction::Crawl)], a.target(TargetAction::Crawl),
+                                         ObjectType::Bar, s.objects[0].size);
+  CHECK(crawl.possible);
+  CHECK(crawl.lift <= 0.0f);
   CHECK(duck.possible);
   CHECK(duck.lift < -0.1f);
   CHECK(jump.possible);
