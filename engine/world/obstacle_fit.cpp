@@ -27,7 +27,8 @@ ClipSweep sweep_clip(const MotionSet& set, const BodyVolumes& volumes, int clip,
   sweep.fps = c.fps;
   const Pose& ref = c.frames[static_cast<size_t>(reference_frame)];
   const glm::vec2 origin = floor_plane::floor_xz(ref.root_position);
-  const glm::vec2 fwd = floor_plane::forward_of(heading_of(ref.rotations[0]));
+  const float heading = heading_of(ref.rotations[0]);
+  const glm::vec2 fwd = floor_plane::forward_of(heading), left = floor_plane::left_of(heading);
   std::vector<glm::vec3> positions;
   std::vector<glm::quat> rotations;
   std::vector<PlacedCapsule> placed;
@@ -38,7 +39,8 @@ ClipSweep sweep_clip(const MotionSet& set, const BodyVolumes& volumes, int clip,
     segments.reserve(placed.size());
     for (const PlacedCapsule& p : placed)
       segments.push_back({glm::dot(floor_plane::floor_xz(p.a) - origin, fwd), p.a.y,
-                          glm::dot(floor_plane::floor_xz(p.b) - origin, fwd), p.b.y, p.radius});
+                          glm::dot(floor_plane::floor_xz(p.b) - origin, fwd), p.b.y, p.radius,
+                          glm::dot(floor_plane::floor_xz(p.a) - origin, left), glm::dot(floor_plane::floor_xz(p.b) - origin, left)});
     sweep.frames.push_back(std::move(segments));
     sweep.root_z.push_back(glm::dot(floor_plane::floor_xz(positions[0]) - origin, fwd));
   }
@@ -51,7 +53,8 @@ BodyReach body_reach(const ClipSweep& sweep, int last_frame) {
   const size_t frames = last_frame < 0 ? sweep.frames.size()
                                        : std::min(sweep.frames.size(), static_cast<size_t>(std::max(0, last_frame - sweep.first_frame + 1)));
   for (size_t k = 0; k < frames; ++k)
-    for (const ClipSweep::Segment& s : sweep.frames[k])
+    for (const ClipSweep::Segment& s : sweep.frames[k]) {
+      reach.half_width = std::max(reach.half_width, std::max(std::fabs(s.x0), std::fabs(s.x1)) + s.radius);
       for (int i = 0; i < kSamples; ++i) {
         const float u = static_cast<float>(i) / (kSamples - 1);
         const float z = s.z0 + u * (s.z1 - s.z0) + s.radius, y = s.y0 + u * (s.y1 - s.y0);
@@ -60,6 +63,7 @@ BodyReach body_reach(const ClipSweep& sweep, int last_frame) {
         if (static_cast<size_t>(hi) >= reach.z.size()) reach.z.resize(static_cast<size_t>(hi) + 1, -std::numeric_limits<float>::infinity());
         for (int b = lo; b <= hi; ++b) reach.z[static_cast<size_t>(b)] = std::max(reach.z[static_cast<size_t>(b)], z);
       }
+    }
   return reach;
 }
 

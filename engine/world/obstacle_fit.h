@@ -32,10 +32,11 @@ constexpr float kFitRamp = 0.35f;    // s over which the fit fades in before, an
 float max_fit(TargetAction action);
 
 // The body of a target clip from T_p to its end, placed per frame in the T_p root's floor frame: z along the
-// T_p facing, y up (x is not needed: obstacles are wider than a body).
+// T_p facing, y up, x to the left.
 struct ClipSweep {
   struct Segment {
     float z0, y0, z1, y1, radius;
+    float x0, x1;  // the fit does not need these (obstacles are wider than a body); the room beside one does
   };
   int first_frame = 0;                        // T_p
   float fps = 30.0f;
@@ -45,12 +46,13 @@ struct ClipSweep {
 ClipSweep sweep_clip(const MotionSet& set, const BodyVolumes& volumes, int clip, int reference_frame);
 
 // How far along the T_p facing (z of the sweep) the body of a target clip reaches at each height, from T_p
-// up to a last frame, capsule radii included: the room an obstacle crossed needs beyond it before the next
-// one (World::launch_lateral). A body lying low under a bar reaches far at knee height and not at all at
-// head height, so a beam beyond a bar takes less room than a hurdle.
+// up to a last frame, capsule radii included, and how far to either side: the room an obstacle crossed needs
+// beyond it before the next one (World::launch_lateral). A body lying low under a bar reaches far at knee
+// height and not at all at head height, so a beam beyond a bar takes less room than a hurdle.
 struct BodyReach {
   static constexpr float kBand = 0.1f;  // m of height per entry
   std::vector<float> z;                 // [band]: the farthest z within heights [b, b + 1) * kBand; -inf: none
+  float half_width = 0.0f;              // m: the farthest the body reaches to either side of the T_p root's line
   // The farthest z of the body at any height from y0 to y1 (-inf when it has none there).
   float over(float y0, float y1) const;
 };

@@ -36,7 +36,7 @@ constexpr float kOpponentHold = 0.5f;  // m short of its launch point at which a
 // farther, it is walked round with room.
 constexpr float kBesideEnd = 0.6f;
 constexpr float kLateralStep = 0.1f;     // m between the places along a span tried for room (launch_lateral)
-constexpr float kBodyHalfWidth = 0.3f;   // m either side of the line a clip crosses along (launch_room_clear)
+constexpr float kBodyLineSpacing = 0.1f; // m between the lines across its width a clip's body is followed along (launch_room_short)
 constexpr float kRoomMargin = 0.05f;     // m kept between a clip's body and the next obstacle (launch_room_short)
 
 // The lateral place (along the obstacle's width, from its middle) where the straight way from `from` to `to`
@@ -114,8 +114,9 @@ float World::launch_lateral(int index, int obstacle) const {
 
 // How much room (m) the clip of `action`, launched at the obstacle along `n` at `lateral` from its middle,
 // lacks before the solids of the other unused across obstacles beyond: its body (BodyReach, up to the frame
-// the clip may be left, as wide as kBodyHalfWidth either side of its line) comes within kRoomMargin of one
-// by this much. <= 0: it has room.
+// the clip may be left, as wide as it reaches either side of its line) comes within kRoomMargin of one by
+// this much. <= 0: it has room. The body's width is followed along parallel lines kBodyLineSpacing apart;
+// each solid is widened by half that, so that a narrow one (a hurdle's foot) cannot fall between two lines.
 float World::launch_room_short(int obstacle, TargetAction action, glm::vec2 n, float lateral) const {
   float shortfall = -std::numeric_limits<float>::infinity();
   const BodyReach& body = assets_->body_reaches[static_cast<size_t>(action)];
@@ -129,13 +130,24 @@ float World::launch_room_short(int obstacle, TargetAction action, glm::vec2 n, f
     const glm::vec2 p2 = floor_xz(next.position), n2 = forward_of(next.spec.heading), along2 = left_of(next.spec.heading);
     const float cosine = glm::dot(n, n2);
     if (std::fabs(cosine) < 0.2f) continue;  // all but parallel to the way across: not crossed on it
-    for (const float side : {-kBodyHalfWidth, 0.0f, kBodyHalfWidth}) {
+    const int lines = static_cast<int>(std::ceil(2.0f * body.half_width / kBodyLineSpacing)) + 1;
+    const float spacing = lines > 1 ? 2.0f * body.half_width / static_cast<float>(lines - 1) : 0.0f;
+    for (int line = 0; line < lines; ++line) {
+      const float side = -body.half_width + static_cast<float>(line) * spacing;
       // The line the T_p root's facing runs along (z = 0 at the T_p root), and where it meets `next`'s frame.
       const glm::vec2 root = floor_xz(o.position) + (lateral + side) * along - reach * n;
       const float z_at_axis = glm::dot(p2 - root, n2) / cosine;
       const float x_at_axis = glm::dot(root + z_at_axis * n - p2, along2);
+      if (line == lines / 2 && z_at_axis > reach) {
+        // The root's own line meets `next` within its width but outside the part a launch is made from
+        // (kSpanMargin inside its ends): its action could not follow straight on, and the character would
+        // walk along it, under or beside its rail, to where it can. Short by as much as the line is outside.
+        const float half = 0.5f * next.spec.size.x, usable = std::max(half - kSpanMargin, 0.0f);
+        const float outside = std::fabs(x_at_axis) - usable;
+        if (outside > 0.0f && std::fabs(x_at_axis) < half) shortfall = std::max(shortfall, outside);
+      }
       for (const ObjectSolid& solid : solids_[k]) {
-        if (std::fabs(x_at_axis - solid.centre.x) > 0.5f * solid.extents.x) continue;
+        if (std::fabs(x_at_axis - solid.centre.x) > 0.5f * (solid.extents.x + spacing)) continue;
         // The solid's depth (along n2) as a stretch of z, and the body's farthest z at the solid's heights.
         const float z0 = z_at_axis + (solid.centre.z - 0.5f * solid.extents.z) / cosine;
         const float z1 = z_at_axis + (solid.centre.z + 0.5f * solid.extents.z) / cosine;

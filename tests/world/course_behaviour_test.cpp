@@ -276,3 +276,31 @@ TEST_CASE("two obstacles at an angle whose gap narrows below a crawl's length: t
     CHECK(e.clearance.object_frames == 0);
   }
 }
+
+TEST_CASE("the next obstacle close beyond the crawl: its end clear of the hands, its usable span lined up with") {
+  // A hurdle 1.6 m beyond a bar and 0.9 m to one side, so that its end (its foot on the floor) lies where the
+  // crawl's hands reach, 0.2-0.4 m to the side of the body's middle line; and a beam 1.03 m high 1.6 m beyond
+  // a narrower bar, 1.1 m to one side and turned 3 degrees from it, so that from the bar's near end the beam
+  // could only be ducked under after walking along it (the body stood up under its rail on the way). The user starts in front of those ends. The crawl lines up where the hands
+  // clear the foot and where the duck follows straight on.
+  const char* hurdle_case =
+      "{\"auto\": true, \"name\": \"hurdle end\", \"characters\": [{\"control\": \"user\", \"position\": [1.9, 0]}], "
+      "\"objects\": [{\"type\": \"bar\", \"position\": [0, 3], \"size\": [5.85, 0.73, 0.06]}, "
+      "{\"type\": \"hurdle\", \"position\": [-0.91, 4.59], \"size\": [5.15, 0.42, 0.09]}], \"goal\": [1.9, 9]}";
+  const char* beam_case =
+      "{\"auto\": true, \"name\": \"beam aside\", \"characters\": [{\"control\": \"user\", \"position\": [0.1, -0.07], \"heading\": 10.5}], "
+      "\"objects\": [{\"type\": \"bar\", \"position\": [0, 3], \"heading\": 10.5, \"size\": [2.93, 0.68, 0.16]}, "
+      "{\"type\": \"beam\", \"position\": [-1.13, 4.61], \"heading\": 7.7, \"size\": [3.98, 1.03, 0.08]}], \"goal\": [1.28, 9.88]}";
+  const std::vector<CourseEvaluation> runs =
+      evaluate_courses({parse_scenario(hurdle_case, "hurdle end"), parse_scenario(beam_case, "beam aside")}, builtin_assets(), 2);
+  const TargetAction second[] = {TargetAction::Jump, TargetAction::Duck};
+  for (size_t k = 0; k < runs.size(); ++k) {
+    const CourseEvaluation& e = runs[k];
+    INFO(e.name << ": " << e.clearance.min_object_what);
+    CHECK(e.reached_goal);
+    REQUIRE(e.launches.size() == 2);
+    CHECK(e.launches[0].action == TargetAction::Crawl);
+    CHECK(e.launches[1].action == second[k]);
+    CHECK(e.clearance.object_frames == 0);
+  }
+}
