@@ -123,6 +123,7 @@ float World::launch_room_short(int obstacle, TargetAction action, glm::vec2 n, f
   if (body.z.empty()) return shortfall;
   const WorldObject& o = objects_[static_cast<size_t>(obstacle)];
   const float reach = assets_->target(action).reach;
+  const float body_farthest = *std::max_element(body.z.begin(), body.z.end());
   const glm::vec2 along = left_of(o.spec.heading);
   for (size_t k = 0; k < objects_.size(); ++k) {
     const WorldObject& next = objects_[k];
@@ -138,13 +139,15 @@ float World::launch_room_short(int obstacle, TargetAction action, glm::vec2 n, f
       const glm::vec2 root = floor_xz(o.position) + (lateral + side) * along - reach * n;
       const float z_at_axis = glm::dot(p2 - root, n2) / cosine;
       const float x_at_axis = glm::dot(root + z_at_axis * n - p2, along2);
-      if (line == lines / 2 && z_at_axis > reach) {
-        // The root's own line meets `next` within its width but outside the part a launch is made from
-        // (kSpanMargin inside its ends): its action could not follow straight on, and the character would
-        // walk along it, under or beside its rail, to where it can. Short by as much as the line is outside.
+      if (line == lines / 2 && z_at_axis > reach && z_at_axis - assets_->target(next.spec.action).reach < body_farthest) {
+        // `next` is so close that its launch point lies within this clip's body, and the root's own line
+        // meets it outside the part a launch is made from (kSpanMargin inside its ends), within its width
+        // or beside its end where it is still in the way (kBesideEnd): its action could not follow straight
+        // on out of this clip, and the character would walk along it, under or beside its rail, to where
+        // it can. Short by as much as the line is outside.
         const float half = 0.5f * next.spec.size.x, usable = std::max(half - kSpanMargin, 0.0f);
         const float outside = std::fabs(x_at_axis) - usable;
-        if (outside > 0.0f && std::fabs(x_at_axis) < half) shortfall = std::max(shortfall, outside);
+        if (outside > 0.0f && std::fabs(x_at_axis) < half + kBesideEnd) shortfall = std::max(shortfall, outside);
       }
       for (const ObjectSolid& solid : solids_[k]) {
         if (std::fabs(x_at_axis - solid.centre.x) > 0.5f * (solid.extents.x + spacing)) continue;
