@@ -323,6 +323,13 @@ bool World::start_target(int index, TargetAction action, int object, int target_
   if (across_obstacle) {
     const WorldObject& o = objects_[static_cast<size_t>(object)];
     rt.fit = fit_obstacle(assets_->sweeps[static_cast<size_t>(action)], t, o.spec.type, o.spec.size);
+    // The body is in the clip's own pose, square to the crossing, by the time it is over or under the
+    // obstacle: a fade still under way there (out of the previous clip, entered late) would carry the
+    // previous pose's legs and heading into the board or rail.
+    if (rt.fit.last >= rt.fit.first && rt.fit.first > entry) {
+      const float to_obstacle = static_cast<float>(rt.fit.first - entry) / assets_->set->clips[static_cast<size_t>(t.clip)].clip.fps;
+      rt.fade_total = rt.fade_left = std::min(rt.fade_left, to_obstacle);
+    }
     if (at_source) {
       // The clip entered here meets the obstacle where it was made to only if the character stands on the
       // launch point: launched short of it (arrived and prepared), past it by more than the entry frame

@@ -351,3 +351,27 @@ TEST_CASE("a ball just past a bar: the kick straight out of the crawl still meet
   CHECK(kicks == 1);
   CHECK(r.summary.object_frames == 0);
 }
+
+TEST_CASE("a hurdle 1.6 m past another and turned 13 degrees: the recorded running jump entered out of the first clears both") {
+  // The second jump is entered late, straight out of the first, its clip facing the second hurdle's
+  // crossing. The cross-fade from the landing must be over before the legs reach the board: a fade still
+  // under way carried the landing's lower legs and heading 9 cm into it.
+  Scenario s = shipped("jump_cmu31");
+  s.objects[0].size = {4.85f, 0.4f, 0.1f};
+  ScenarioObject second = s.objects[0];
+  second.position = {0.0f, s.objects[0].position.y + 1.62f};
+  second.heading = 12.8f * 3.14159265f / 180.0f;
+  second.size = {5.15f, 0.4f, 0.1f};
+  s.objects.push_back(second);
+  s.goal = {{0.0f, second.position.y + 4.0f}};
+  const auto assets = prepare_world_assets(s, load_scenario_params(s), test::tmp_dir() + "/policy-cache");
+  World world(s, assets);
+  world.set_auto(true);
+  ClearanceLog log(world);
+  world.run_until_done(40.0f, 1.0f, [&](const World& w) { log.observe(w); });
+  INFO(log.summary.min_object_what);
+  REQUIRE(log.launches.size() == 2);
+  CHECK(log.launches[1].action == TargetAction::Jump);
+  CHECK(log.summary.object_frames == 0);
+  CHECK(log.summary.min_object >= -clearance_metric::kObjectTolerance);
+}
