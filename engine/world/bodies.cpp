@@ -124,17 +124,33 @@ void World::keep_clear_of_obstacles(int index) {
     if (ball && glm::length(c.position - at) > 1e-4f) n = glm::normalize(c.position - at);  // away from it
     if (glm::dot(c.position - at, n) < 0.0f) n = -n;
     // The depth is the nearest way out, which may be up (a foot on the board's top): a step along n by it
-    // may leave the body in; a few steps finish the way out.
+    // may leave the body in; a few steps finish the way out. A narrow solid lying along n (a hurdle's foot
+    // or leg, a post) is left sooner to its side: a step that along n would leave the body in goes along
+    // the obstacle's width instead where that leaves it clear.
     const ObjectFrame frame(at, o.spec.heading);
-    for (int step = 0; step < 4; ++step) {
-      const glm::vec3 moved(push.x, 0.0f, push.y);
+    const auto depth_at = [&](glm::vec2 offset) {
+      const glm::vec3 moved(offset.x, 0.0f, offset.y);
       float depth = 0.0f;
       for (const PlacedCapsule& capsule : rt.capsules) {
         const PlacedCapsule framed{frame.to_local(capsule.a + moved), frame.to_local(capsule.b + moved), capsule.radius};
         for (const ObjectSolid& s : solids_[k]) depth = std::max(depth, framed_capsule_solid_depth(framed, s));
       }
-      if (depth <= 0.0f) break;
-      push += (depth + kClearSkin) * n;
+      return depth;
+    };
+    const glm::vec2 along = floor_plane::left_of(o.spec.heading);
+    float depth = depth_at(push);
+    for (int step = 0; step < 4 && depth > 0.0f; ++step) {
+      const float by = depth + kClearSkin;
+      glm::vec2 best = push + by * n;
+      float best_depth = depth_at(best);
+      if (!ball && best_depth > 0.0f)
+        for (const glm::vec2 side : {along, -along})
+          if (best_depth > 0.0f && depth_at(push + by * side) <= 0.0f) {
+            best = push + by * side;
+            best_depth = 0.0f;
+          }
+      push = best;
+      depth = best_depth;
     }
   }
   displace(index, push);
