@@ -16,6 +16,10 @@ AlphaFilter::AlphaFilter(float sigma_s, float dt) {
     weights_[static_cast<size_t>(k)] = sigma_s > 0.0f ? std::exp(-t * t / (2.0f * sigma_s * sigma_s)) : 1.0f;
   }
   history_.assign(weights_.size(), 0.0f);
+  // The weights' running sums, added in the order push() adds them, so that its sum is the same float.
+  weight_sums_.resize(weights_.size());
+  float sum = 0.0f;
+  for (size_t k = 0; k < weights_.size(); ++k) weight_sums_[k] = sum += weights_[k];
 }
 
 void AlphaFilter::reset(float alpha) {
@@ -26,16 +30,17 @@ void AlphaFilter::reset(float alpha) {
 
 float AlphaFilter::push(float alpha) {
   const int n = static_cast<int>(history_.size());
-  head_ = (head_ + 1) % n;
+  head_ = head_ + 1 == n ? 0 : head_ + 1;
   history_[static_cast<size_t>(head_)] = alpha;
   if (count_ < n) ++count_;
-  float sum = 0.0f, weight = 0.0f;
-  for (int k = 0; k < count_; ++k) {
-    const int i = (head_ - k + n) % n;
-    sum += weights_[static_cast<size_t>(k)] * history_[static_cast<size_t>(i)];
-    weight += weights_[static_cast<size_t>(k)];
-  }
-  value_ = sum / weight;
+  // Newest first: k ticks ago is head_ - k, wrapping once from the ring's start to its end.
+  float sum = 0.0f;
+  const float* w = weights_.data();
+  const float* h = history_.data();
+  const int before_wrap = std::min(count_, head_ + 1);
+  for (int k = 0; k < before_wrap; ++k) sum += w[k] * h[head_ - k];
+  for (int k = before_wrap; k < count_; ++k) sum += w[k] * h[head_ - k + n];
+  value_ = sum / weight_sums_[static_cast<size_t>(count_ - 1)];
   return value_;
 }
 

@@ -44,7 +44,8 @@ class AlphaFilter {
   int taps() const { return static_cast<int>(weights_.size()); }
 
  private:
-  std::vector<float> weights_;  // [k] for the sample k ticks ago
+  std::vector<float> weights_;      // [k] for the sample k ticks ago
+  std::vector<float> weight_sums_;  // [k]: weights_[0] + ... + weights_[k]
   std::vector<float> history_;  // ring buffer
   int head_ = 0, count_ = 0;
   float value_ = 0.0f;

@@ -2,6 +2,9 @@
 
 #include <cmath>
 #include <memory>
+#include <random>
+#include <vector>
+#include <algorithm>
 #include <stdexcept>
 
 #include "engine/control/controller.h"
@@ -34,6 +37,42 @@ TEST_CASE("the Gaussian alpha filter answers a step like erf(t / (sigma sqrt 2))
   AlphaFilter none(0.0f, dt);
   none.reset(0.2f);
   CHECK(none.push(0.8f) == doctest::Approx(0.8));
+}
+
+TEST_CASE("the alpha filter's ring walk gives the same floats as the weighted sum taken tap by tap") {
+  // The filter as the paper's Gaussian reads: sum over k of w_k alpha(t - k dt), divided by the sum of the
+  // weights used, each k's sample found by index arithmetic. push() walks the ring in two runs instead.
+  for (const float sigma : {0.25f, 0.1f, 0.0f}) {
+    CAPTURE(sigma);
+    const float dt = 1.0f / 60.0f;
+    AlphaFilter f(sigma, dt);
+    const int n = f.taps();
+    std::vector<float> w(static_cast<size_t>(n)), ring(static_cast<size_t>(n), 0.0f);
+    for (int k = 0; k < n; ++k) {
+      const float t = static_cast<float>(k) * dt;
+      w[static_cast<size_t>(k)] = sigma > 0.0f ? std::exp(-t * t / (2.0f * sigma * sigma)) : 1.0f;
+    }
+    int head = 0, count = 0;
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> level(0.0f, 1.0f);
+    for (int tick = 0; tick < 3000; ++tick) {
+      if (tick == 1000) {  // a reset part way: the ring filled with one level
+        f.reset(0.4f);
+        std::fill(ring.begin(), ring.end(), 0.4f);
+        count = n;
+      }
+      const float a = level(rng);
+      head = (head + 1) % n;
+      ring[static_cast<size_t>(head)] = a;
+      if (count < n) ++count;
+      float sum = 0.0f, weight = 0.0f;
+      for (int k = 0; k < count; ++k) {
+        sum += w[static_cast<size_t>(k)] * ring[static_cast<size_t>((head - k + n) % n)];
+        weight += w[static_cast<size_t>(k)];
+      }
+      REQUIRE(f.push(a) == sum / weight);
+    }
+  }
 }
 
 TEST_CASE("the runtime controller takes the greedy action and feeds its alpha back (Eq. 13)") {
