@@ -68,6 +68,7 @@ std::unique_ptr<World> Crowd::make_lane(int i) {
   user.heading += options_.heading_jitter * symmetric(rng);
   auto world = std::make_unique<World>(s, assets_);
   world->set_auto(true);
+  world->set_stage_timing(false);
   started_[static_cast<size_t>(i)] = time_;
   done_for_[static_cast<size_t>(i)] = 0.0f;
   return world;

@@ -165,7 +165,7 @@ void World::run(float seconds) {
 }
 
 void World::step() {
-  const auto step_start = StageClock::now();
+  const auto step_start = stage_now();
   stage_times_ = StageTimes{};
   const float dt = params_.runtime.fixed_dt;
   time_ += dt;
@@ -189,7 +189,7 @@ void World::step() {
   if (static_cast<int>(alpha_history_.size()) >= 2 * kAlphaHistory) {
     alpha_history_.erase(alpha_history_.begin(), alpha_history_.end() - kAlphaHistory);
   }
-  stage_times_.total_ms = ms_between(step_start, StageClock::now());
+  stage_times_.total_ms = ms_between(step_start, stage_now());
 }
 
 
@@ -598,7 +598,7 @@ void World::step_character(int index) {
   WorldCharacter& c = characters_[static_cast<size_t>(index)];
   Runtime& rt = *runtime_[static_cast<size_t>(index)];
   const float dt = params_.runtime.fixed_dt;
-  const auto control_start = StageClock::now();
+  const auto control_start = stage_now();
 
   choose_source(index);
   if (!c.in_target) control(index);
@@ -607,7 +607,7 @@ void World::step_character(int index) {
                        !(c.has_source && approach(index).to_launch <= params_.runtime.preparation_range);
   float alpha = rt.controller->tick(relaxed);  // Gaussian-smoothed (controller.h)
   if (!preparation_) alpha = 0.0f;      // the naive baseline (set_preparation)
-  const auto motion_start = StageClock::now();
+  const auto motion_start = stage_now();
   stage_times_.control_ms += ms_between(control_start, motion_start);
   rt.stream.advance(dt);
   if (!c.in_target) steer_tightly(index);
@@ -656,7 +656,7 @@ void World::step_character(int index) {
     }
   }
 
-  const auto synthesis_start = StageClock::now();
+  const auto synthesis_start = stage_now();
   stage_times_.motion_ms += ms_between(motion_start, synthesis_start);
   Pose& out = rt.out;  // kept between ticks: no allocation per tick
   out.rotations.resize(static_cast<size_t>(assets_->set->skeleton->size()));
@@ -709,13 +709,13 @@ void World::step_character(int index) {
   rt.speed += dt / (dt + 0.5f) * (glm::length(c.position - previous_position) / dt - rt.speed);
   rt.velocity = (c.position - previous_position) / dt;
   c.heading = heading_of(rt.stream.pose().rotations[0]);
-  const auto balance_start = StageClock::now();
+  const auto balance_start = stage_now();
   stage_times_.synthesis_ms += ms_between(synthesis_start, balance_start);
   update_balance(index, true);
   update_goal(index);
   update_arrival(index);
   try_auto_launch(index);
-  stage_times_.balance_ms += ms_between(balance_start, StageClock::now());
+  stage_times_.balance_ms += ms_between(balance_start, stage_now());
 }
 
 // ---------------------------------------------------------------------------------------------------------
