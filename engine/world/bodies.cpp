@@ -3,6 +3,7 @@
 // and a defeated opponent stepping out of the way.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "engine/motion/kinematics.h"
@@ -128,12 +129,23 @@ void World::keep_clear_of_obstacles(int index) {
     // or leg, a post) is left sooner to its side: a step that along n would leave the body in goes along
     // the obstacle's width instead where that leaves it clear.
     const ObjectFrame frame(at, o.spec.heading);
+    // The body's box in the object's frame first: a solid apart from it along one axis has no capsule in it.
     const auto depth_at = [&](glm::vec2 offset) {
       const glm::vec3 moved(offset.x, 0.0f, offset.y);
+      rt.framed.resize(rt.capsules.size());
+      glm::vec3 low(std::numeric_limits<float>::infinity()), high(-std::numeric_limits<float>::infinity());
+      for (size_t i = 0; i < rt.capsules.size(); ++i) {
+        const PlacedCapsule& capsule = rt.capsules[i];
+        PlacedCapsule& f = rt.framed[i];
+        f = {frame.to_local(capsule.a + moved), frame.to_local(capsule.b + moved), capsule.radius};
+        low = glm::min(low, glm::min(f.a, f.b) - f.radius);
+        high = glm::max(high, glm::max(f.a, f.b) + f.radius);
+      }
       float depth = 0.0f;
-      for (const PlacedCapsule& capsule : rt.capsules) {
-        const PlacedCapsule framed{frame.to_local(capsule.a + moved), frame.to_local(capsule.b + moved), capsule.radius};
-        for (const ObjectSolid& s : solids_[k]) depth = std::max(depth, framed_capsule_solid_depth(framed, s));
+      for (const ObjectSolid& s : solids_[k]) {
+        const glm::vec3 half = s.sphere ? glm::vec3(0.5f * s.extents.x) : 0.5f * s.extents;
+        if (glm::any(glm::greaterThan(low - s.centre, half)) || glm::any(glm::lessThan(high - s.centre, -half))) continue;
+        for (const PlacedCapsule& f : rt.framed) depth = std::max(depth, framed_capsule_solid_depth(f, s));
       }
       return depth;
     };

@@ -111,6 +111,11 @@ float capsule_solid_depth(const PlacedCapsule& pc, const ObjectSolid& s, glm::ve
 float framed_capsule_solid_depth(const PlacedCapsule& framed, const ObjectSolid& s) {
   const glm::vec3 a = framed.a, b = framed.b;
   const PlacedCapsule& pc = framed;
+  // The capsule's bounding box apart from the solid's along one of the object's axes: nothing reaches in.
+  // (A sphere's box is its cube.) Most limbs near an obstacle are told apart here.
+  const glm::vec3 half = s.sphere ? glm::vec3(0.5f * s.extents.x) : 0.5f * s.extents;
+  const glm::vec3 low = glm::min(a, b) - pc.radius - s.centre, high = glm::max(a, b) + pc.radius - s.centre;
+  if (low.x > half.x || low.y > half.y || low.z > half.z || high.x < -half.x || high.y < -half.y || high.z < -half.z) return 0.0f;
   const glm::vec3 middle = 0.5f * (a + b);
   const float to_middle = s.sphere ? glm::length(middle - s.centre) - 0.5f * s.extents.x
                                    : point_box_distance(middle - s.centre, 0.5f * s.extents);
