@@ -99,6 +99,7 @@ void World::keep_clear_of_obstacles(int index) {
   Runtime& rt = *runtime_[static_cast<size_t>(index)];
   constexpr float kBodyReach = 1.6f;  // m: no capsule is farther than this from the root on the floor
   bool placed = false;
+  glm::vec2 body_low(0.0f), body_high(0.0f);  // the body's box on the floor, once placed
   glm::vec2 push(0.0f);
   for (size_t k = 0; k < objects_.size(); ++k) {
     const WorldObject& o = objects_[k];
@@ -109,8 +110,8 @@ void World::keep_clear_of_obstacles(int index) {
     const bool ball = o.spec.type == ObjectType::Ball;
     if (!(is_across(o.spec.type) || ball) || (own && (ball || rt.fade_left <= 0.0f || o.spec.type == ObjectType::Hurdle))) continue;
     const glm::vec2 at = floor_xz(o.position);
-    if (glm::length(at - c.position) > 0.5f * glm::length(glm::vec2(o.spec.size.x, o.spec.size.z)) + kHurdleFootLength + kBodyReach)
-      continue;
+    const float object_reach = 0.5f * glm::length(glm::vec2(o.spec.size.x, o.spec.size.z)) + kHurdleFootLength;
+    if (glm::length(at - c.position) > object_reach + kBodyReach) continue;
     if (!placed) {
       const MotionSet& set = *assets_->set;
       if (rt.kinematics_of_pose) {
@@ -120,7 +121,15 @@ void World::keep_clear_of_obstacles(int index) {
         volumes_->place(rt.positions, rt.rotations, rt.capsules);
       }
       placed = true;
+      body_low = glm::vec2(std::numeric_limits<float>::infinity());
+      body_high = -body_low;
+      for (const PlacedCapsule& p : rt.capsules) {
+        body_low = glm::min(body_low, glm::min(floor_xz(p.a), floor_xz(p.b)) - p.radius);
+        body_high = glm::max(body_high, glm::max(floor_xz(p.a), floor_xz(p.b)) + p.radius);
+      }
     }
+    // The object within a circle about its middle: the body's floor box farther from that middle is clear.
+    if (glm::length(glm::clamp(at, body_low, body_high) - at) > object_reach) continue;
     glm::vec2 n = forward_of(o.spec.heading);
     if (ball && glm::length(c.position - at) > 1e-4f) n = glm::normalize(c.position - at);  // away from it
     if (glm::dot(c.position - at, n) < 0.0f) n = -n;
