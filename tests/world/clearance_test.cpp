@@ -50,8 +50,13 @@ struct ClearanceRun {
   bool goal = false;
 };
 
-ClearanceRun run_clearance(const Scenario& s, float seconds = 40.0f) {
-  World world(s, clearance_test_assets());
+// A scenario on other motions than the built-in ones brings its own assets (its manifest, its policy).
+std::shared_ptr<const WorldAssets> own_assets(const Scenario& s) {
+  return prepare_world_assets(s, load_scenario_params(s), test::tmp_dir() + "/policy-cache");
+}
+
+ClearanceRun run_clearance(const Scenario& s, float seconds = 40.0f, std::shared_ptr<const WorldAssets> assets = nullptr) {
+  World world(s, assets ? assets : clearance_test_assets());
   world.set_auto(true);
   ClearanceLog log(world);
   ClearanceRun r;
@@ -346,14 +351,10 @@ TEST_CASE("an opponent walking past a hurdle's end with a foot on the hurdle's f
   s.objects[0].heading = -47.978f * 3.14159265f / 180.0f;
   s.objects[1].heading = 115.545f * 3.14159265f / 180.0f;
   s.goal = {{9.623f, -8.671f}};
-  const auto assets = prepare_world_assets(s, load_scenario_params(s), test::tmp_dir() + "/policy-cache");
-  World world(s, assets);
-  world.set_auto(true);
-  ClearanceLog log(world);
-  world.run_until_done(60.0f, 1.0f, [&](const World& w) { log.observe(w); });
-  INFO(log.summary.min_object_what);
-  CHECK(world.goal_reached());
-  CHECK(log.summary.object_frames == 0);
+  const ClearanceRun r = run_clearance(s, 60.0f, own_assets(s));
+  INFO(r.summary.min_object_what);
+  CHECK(r.goal);
+  CHECK(r.summary.object_frames == 0);
 }
 
 TEST_CASE("a ball just past a bar: the kick straight out of the crawl still meets it") {
@@ -387,14 +388,10 @@ TEST_CASE("a hurdle 1.6 m past another and turned 13 degrees: the recorded runni
   second.size = {5.15f, 0.4f, 0.1f};
   s.objects.push_back(second);
   s.goal = {{0.0f, second.position.y + 4.0f}};
-  const auto assets = prepare_world_assets(s, load_scenario_params(s), test::tmp_dir() + "/policy-cache");
-  World world(s, assets);
-  world.set_auto(true);
-  ClearanceLog log(world);
-  world.run_until_done(40.0f, 1.0f, [&](const World& w) { log.observe(w); });
-  INFO(log.summary.min_object_what);
-  REQUIRE(log.launches.size() == 2);
-  CHECK(log.launches[1].action == TargetAction::Jump);
-  CHECK(log.summary.object_frames == 0);
-  CHECK(log.summary.min_object >= -clearance_metric::kObjectTolerance);
+  const ClearanceRun r = run_clearance(s, 40.0f, own_assets(s));
+  INFO(r.summary.min_object_what);
+  REQUIRE(r.launches.size() == 2);
+  CHECK(r.launches[1].action == TargetAction::Jump);
+  CHECK(r.summary.object_frames == 0);
+  CHECK(r.summary.min_object >= -clearance_metric::kObjectTolerance);
 }
