@@ -1,4 +1,4 @@
-// duck (walk through under a beam ~1.2 m high) and crawl (on hands and knees, low, under a bar ~0.58 m high).
+// duck (walk through under a beam ~1.2 m high) and crawl (low, on the knees and forearms, under a bar ~0.58 m high).
 #include <algorithm>
 #include <cmath>
 
@@ -113,8 +113,8 @@ GeneratedClip make_crawl(const std::string& name, Obstacle* bar) {
   spec.walk_out_s = T;
 
   // The crawling posture: a low crawl, the trunk horizontal, the thighs leaning back from the knees, shins
-  // on the floor, the hands under the shoulders with the elbows bent back along the body, the neck extended
-  // to look ahead.
+  // on the floor, the elbows bent under the shoulders and the forearms and palms on the floor ahead of
+  // them, the neck extended to look ahead.
   const float root_crawl_y = 0.43f;
   // The knee is behind the hip by the thigh's lean: the hip joint (behind the root, the pelvis tilted
   // forward) at its crawling height, the knee joint kKneeOnFloor above the floor. The keyed hip and knee

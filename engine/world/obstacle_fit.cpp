@@ -13,7 +13,7 @@ namespace prep {
 
 float max_fit(TargetAction action) {
   switch (action) {
-    case TargetAction::Crawl: return 0.04f;  // knees and hands on the floor: barely lower
+    case TargetAction::Crawl: return 0.04f;  // knees and forearms on the floor: barely lower
     case TargetAction::Duck: return 0.22f;   // a deeper crouch, the knees bending further
     case TargetAction::Jump: return 0.20f;   // a higher flight
     default: return 0.0f;

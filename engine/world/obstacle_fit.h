@@ -7,7 +7,7 @@
 // - Over a hurdle: the lowest point of the body over the board; a taller board raises the body by the
 //   difference plus kFitMargin while it passes, feet in contact kept planted (a higher flight).
 // The change fades in and out over kFitRamp seconds around the frames where the body is over or under it.
-// How far a clip may be changed is bounded per action (kMaxDip, kMaxLift): a crawl's knees and hands are on
+// How far a clip may be changed is bounded per action (max_fit): a crawl's knees and forearms are on
 // the floor, so it can hardly go lower. An obstacle beyond that cannot be passed by the set's clip, and a
 // scenario holding one is refused on loading (World's constructor names the object).
 #pragma once
