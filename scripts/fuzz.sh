@@ -70,7 +70,10 @@ log="$scratch/$target.log"
 status=0
 start=$SECONDS
 # The scratch folder comes first: libFuzzer writes what it finds into its first corpus folder.
-nice -n 15 "$build/prep_fuzz_$target" "${flags[@]}" "$@" "$scratch/$target" "$seeds" >"$log" 2>&1 || status=$?
+# Seeds the build generated (tests/fuzz/bvh_seeds.cmake) are read beside the checked-in ones.
+generated=()
+[ -d "$build/fuzz-seeds/$target" ] && generated=("$build/fuzz-seeds/$target")
+nice -n 15 "$build/prep_fuzz_$target" "${flags[@]}" "$@" "$scratch/$target" "$seeds" "${generated[@]}" >"$log" 2>&1 || status=$?
 # The last status line holds the coverage (cov: edges, ft: features); -print_final_stats the executions.
 last="$(grep -aE '#[0-9]+.*cov: ' "$log" | tail -1 || true)"
 execs="$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)"
