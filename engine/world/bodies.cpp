@@ -113,20 +113,8 @@ void World::keep_clear_of_obstacles(int index) {
     const float object_reach = 0.5f * glm::length(glm::vec2(o.spec.size.x, o.spec.size.z)) + kHurdleFootLength;
     if (glm::length(at - c.position) > object_reach + kBodyReach) continue;
     if (!placed) {
-      const MotionSet& set = *assets_->set;
-      if (rt.kinematics_of_pose) {
-        volumes_->place(rt.scratch.positions, rt.scratch.rotations, rt.capsules);
-      } else {
-        forward_kinematics(*set.skeleton, c.pose, rt.positions, &rt.rotations);
-        volumes_->place(rt.positions, rt.rotations, rt.capsules);
-      }
+      place_body(index, body_low, body_high);
       placed = true;
-      body_low = glm::vec2(std::numeric_limits<float>::infinity());
-      body_high = -body_low;
-      for (const PlacedCapsule& p : rt.capsules) {
-        body_low = glm::min(body_low, glm::min(floor_xz(p.a), floor_xz(p.b)) - p.radius);
-        body_high = glm::max(body_high, glm::max(floor_xz(p.a), floor_xz(p.b)) + p.radius);
-      }
     }
     // The object within a circle about its middle: the body's floor box farther from that middle is clear.
     if (glm::length(glm::clamp(at, body_low, body_high) - at) > object_reach) continue;
@@ -175,6 +163,74 @@ void World::keep_clear_of_obstacles(int index) {
     }
   }
   displace(index, push);
+}
+
+// Two bodies keep apart where their roots do not tell: a hand in guard held out across another's way, an
+// arm swinging past a shoulder. Where two characters' capsules come nearer than kBodyGap (a punch's
+// striking arm against the one it is launched at aside), they are set apart along the line between their
+// roots to that gap, each by the share of the closing that is its own, as keep_apart does. The gap is a
+// tick's worth of two hands swinging toward each other, so that the next frame's motion does not carry one
+// into the other before it is set apart again.
+void World::keep_bodies_apart() {
+  const size_t n = characters_.size();
+  if (n < 2 || !params_.runtime.keep_clear) return;
+  constexpr float kBodyReach = 1.6f;  // m: no capsule is farther than this from the root on the floor
+  const std::vector<BodyCapsule>& parts = volumes_->capsules();
+  std::vector<glm::vec2> low(n), high(n);
+  std::vector<char> placed(n, 0);
+  for (size_t i = 0; i < n; ++i)
+    for (size_t j = i + 1; j < n; ++j) {
+      WorldCharacter& a = characters_[i];
+      WorldCharacter& b = characters_[j];
+      const glm::vec2 d = b.position - a.position;
+      const float distance = glm::length(d);
+      if (distance >= 2.0f * kBodyReach) continue;
+      for (size_t k : {i, j})
+        if (!placed[k]) {
+          place_body(static_cast<int>(k), low[k], high[k]);
+          placed[k] = 1;
+        }
+      // Floor boxes apart: no capsule of one meets one of the other.
+      if (glm::any(glm::greaterThan(low[i], high[j])) || glm::any(glm::greaterThan(low[j], high[i]))) continue;
+      const std::vector<PlacedCapsule>& ca = runtime_[i]->capsules;
+      const std::vector<PlacedCapsule>& cb = runtime_[j]->capsules;
+      float nearest = std::numeric_limits<float>::infinity();
+      for (size_t p = 0; p < ca.size(); ++p) {
+        if (a.arm_out_at == static_cast<int>(j) && is_striking_limb(a.playing, parts[p].part)) continue;
+        for (size_t q = 0; q < cb.size(); ++q) {
+          if (b.arm_out_at == static_cast<int>(i) && is_striking_limb(b.playing, parts[q].part)) continue;
+          nearest = std::min(nearest, segment_segment_distance(ca[p].a, ca[p].b, cb[q].a, cb[q].b) - ca[p].radius - cb[q].radius);
+        }
+      }
+      if (nearest >= kBodyGap) continue;
+      const glm::vec2 dir = distance > 1e-4f ? d / distance : forward_of(a.heading);
+      const float va = std::max(0.0f, glm::dot(runtime_[i]->velocity, dir));
+      const float vb = std::max(0.0f, -glm::dot(runtime_[j]->velocity, dir));
+      const float share_a = va + vb > 1e-4f ? va / (va + vb) : 0.5f;
+      const float gap = kBodyGap - nearest;
+      const float most = kMaxShoveSpeed * params_.runtime.fixed_dt;
+      displace(static_cast<int>(i), -std::min(share_a * gap, most) * dir);
+      displace(static_cast<int>(j), std::min((1.0f - share_a) * gap, most) * dir);
+      for (size_t k : {i, j}) placed[k] = 0;
+    }
+}
+
+// The body's capsules this frame into the character's Runtime::capsules, and their box on the floor.
+void World::place_body(int index, glm::vec2& low, glm::vec2& high) {
+  const WorldCharacter& c = characters_[static_cast<size_t>(index)];
+  Runtime& rt = *runtime_[static_cast<size_t>(index)];
+  if (rt.kinematics_of_pose) {
+    volumes_->place(rt.scratch.positions, rt.scratch.rotations, rt.capsules);
+  } else {
+    forward_kinematics(*assets_->set->skeleton, c.pose, rt.positions, &rt.rotations);
+    volumes_->place(rt.positions, rt.rotations, rt.capsules);
+  }
+  low = glm::vec2(std::numeric_limits<float>::infinity());
+  high = -low;
+  for (const PlacedCapsule& p : rt.capsules) {
+    low = glm::min(low, glm::min(floor_xz(p.a), floor_xz(p.b)) - p.radius);
+    high = glm::max(high, glm::max(floor_xz(p.a), floor_xz(p.b)) + p.radius);
+  }
 }
 
 void World::displace(int index, glm::vec2 offset) {

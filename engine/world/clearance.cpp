@@ -25,13 +25,12 @@ glm::vec3 closest_on_segment(glm::vec3 p, glm::vec3 a, glm::vec3 b) {
   return a + t * ab;
 }
 
-// A punch's striking hand and forearm (the side the action names).
+}  // namespace
+
 bool is_striking_limb(TargetAction punch, BodyPart part) {
   if (punch == TargetAction::PunchLeft) return part == BodyPart::LeftHand || part == BodyPart::LeftArm;
   return part == BodyPart::RightHand || part == BodyPart::RightArm;
 }
-
-}  // namespace
 
 float segment_box_distance(glm::vec3 a, glm::vec3 b, glm::vec3 centre, glm::vec3 half) {
   // The signed distance to a convex set is convex along a line, so its minimum over the segment is found by

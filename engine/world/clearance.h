@@ -47,6 +47,9 @@ struct CharacterClearance {
   std::vector<int> penetrating;      // capsules deeper than the tolerances in anything (the debug view)
 };
 
+// A punch's striking hand and forearm (the side the action names): they may meet the one punched at.
+bool is_striking_limb(TargetAction punch, BodyPart part);
+
 // Signed distances of the primitives (exposed for the tests).
 float segment_box_distance(glm::vec3 a, glm::vec3 b, glm::vec3 centre, glm::vec3 half_extents);  // to the box's surface
 float segment_segment_distance(glm::vec3 a0, glm::vec3 a1, glm::vec3 b0, glm::vec3 b1);

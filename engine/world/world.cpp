@@ -182,6 +182,7 @@ void World::step() {
   }
   for (int i = 0; i < static_cast<int>(characters_.size()); ++i) step_character(i);
   keep_apart();
+  keep_bodies_apart();
   for (int i = 0; i < static_cast<int>(characters_.size()); ++i) keep_clear_of_obstacles(i);
   alpha_history_.push_back({time_, characters_[static_cast<size_t>(user_)].alpha});
   // Trimmed in blocks, so that a tick does not move the whole history (in a crowd of worlds that was a

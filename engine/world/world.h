@@ -151,6 +151,8 @@ constexpr float kStrikeRecovery = 0.35f;
 constexpr float kFacingSlack = 15.0f * 3.14159265f / 180.0f;
 // m: a body set out of an obstacle (World::keep_clear_of_obstacles) is left this far clear of it.
 constexpr float kClearSkin = 0.005f;
+// m: two characters' bodies are kept this far apart (World::keep_bodies_apart).
+constexpr float kBodyGap = 0.03f;
 // m: nearer than this to its launch point at another character, a character makes for that character.
 constexpr float kLaunchPointNear = 0.5f;
 // m: a defeated opponent steps this far aside, out of the user's way (World::defeat).
@@ -432,6 +434,8 @@ class World {
   void steer_tightly(int index);
   void fit_pose(int index, Pose& pose);
   void keep_apart();
+  void keep_bodies_apart();
+  void place_body(int index, glm::vec2& low, glm::vec2& high);
   void keep_clear_of_obstacles(int index);
   void displace(int index, glm::vec2 offset);
 

@@ -252,6 +252,25 @@ TEST_CASE("characters keep their distance: roots never closer than the personal 
   CHECK(r.summary.min_character >= -clearance_metric::kCharacterTolerance);
 }
 
+TEST_CASE("two opponents in a row: the first one beaten steps aside past the second's guard without touching it") {
+  // A random course (seed 1, course 112): the user punches the nearer of two opponents standing 2.1 m apart
+  // in its way. The beaten one steps aside past the other, whose guard is held out toward the user: the
+  // roots stay more than the personal space apart, but a hand had gone 6 cm into the other's hand.
+  Scenario s = shipped("fight");
+  s.characters.resize(1);
+  s.characters[0].position = {0.0f, 0.0f};
+  s.characters[0].heading = 177.684f * 3.14159265f / 180.0f;
+  s.objects = {placed_object(ObjectType::Opponent, TargetAction::PunchLeft, {1.471f, -3.888f}, {0.0f, 0.0f, 0.0f}),
+               placed_object(ObjectType::Opponent, TargetAction::PunchLeft, {2.803f, -5.561f}, {0.0f, 0.0f, 0.0f})};
+  for (ScenarioObject& o : s.objects) o.heading = -17.964f * 3.14159265f / 180.0f;
+  s.goal = {{2.678f, -8.260f}, {1.699f, -11.413f}};
+  const ClearanceRun r = run_clearance(s);
+  INFO(r.summary.min_character_what);
+  CHECK(r.goal);
+  CHECK(r.summary.character_frames == 0);
+  CHECK(r.summary.min_character >= -clearance_metric::kCharacterTolerance);
+}
+
 TEST_CASE("a fight: opponents strike only from their reach, and step aside once defeated") {
   World world(shipped("fight"), clearance_test_assets());
   world.set_auto(true);
