@@ -6,6 +6,7 @@
 #include <limits>
 #include <vector>
 
+#include "engine/control/arrival.h"
 #include "engine/motion/kinematics.h"
 #include "engine/synthesis/foot_ik.h"
 #include "engine/world/clearance.h"
@@ -40,15 +41,20 @@ void World::keep_apart() {
       const float facing = std::clamp(glm::dot(forward_of(a.heading), dir), 0.0f, 1.0f) +
                            std::clamp(-glm::dot(forward_of(b.heading), dir), 0.0f, 1.0f);
       float space = kPersonalSpace + 0.5f * (kFacingSpace - kPersonalSpace) * facing;
-      // Without preparation (the naive baseline) nothing stops a character short of its launch point, so it
-      // launches only there: one whose source is the other is let come that near. Prepared, it arrives and
-      // strikes from where it stands (update_arrival).
-      auto striking_distance = [&](const WorldCharacter& c, size_t other) {
-        return !preparation_ && c.has_source && c.source_character == static_cast<int>(other)
-                   ? glm::length(c.source_object_position - c.source) - kStrikeSlack
-                   : kFacingSpace;
+      // One whose source is the other is let come as near as it needs to strike. Without preparation (the
+      // naive baseline) nothing stops it short of its launch point, so it launches only there: it is let
+      // come that near. Prepared, it arrives within its arrival radius of the launch point and strikes from
+      // where it stands (update_arrival). A punch whose reach is so short (a motion set's jab) that the
+      // facing space keeps its launch point out of that radius is let come to half the radius of it.
+      auto striking_distance = [&](size_t index, size_t other) {
+        const WorldCharacter& c = characters_[index];
+        if (!c.has_source || c.source_character != static_cast<int>(other)) return kFacingSpace;
+        const float reach = glm::length(c.source_object_position - c.source);
+        if (!preparation_) return reach - kStrikeSlack;
+        const float radius = arrival_->radius(runtime_[index]->source_closing_speed);
+        return reach + radius < kFacingSpace ? reach + 0.5f * radius : kFacingSpace;
       };
-      space = std::max(std::min({space, striking_distance(a, j), striking_distance(b, i)}), kPersonalSpace);
+      space = std::max(std::min({space, striking_distance(i, j), striking_distance(j, i)}), kPersonalSpace);
       if (distance >= space) continue;
       const float va = std::max(0.0f, glm::dot(runtime_[i]->velocity, dir));
       const float vb = std::max(0.0f, -glm::dot(runtime_[j]->velocity, dir));

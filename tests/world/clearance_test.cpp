@@ -271,6 +271,28 @@ TEST_CASE("two opponents in a row: the first one beaten steps aside past the sec
   CHECK(r.summary.min_character >= -clearance_metric::kCharacterTolerance);
 }
 
+TEST_CASE("a punch shorter than the facing space: the user still comes near enough to strike both opponents") {
+  // A random course of cmu31's (seed 1, course 101). Its jab launches 0.9 m from the one punched, inside
+  // the 1 m two facing characters were held apart at: the user stood 0.1 m short of its launch point,
+  // outside its arrival radius, turning this way and that while the opponent kept punching, and never
+  // reached its goal.
+  Scenario s = shipped("fight_cmu31");
+  s.characters.resize(1);
+  s.characters[0].position = {0.0f, 0.0f};
+  s.characters[0].heading = 178.015f * 3.14159265f / 180.0f;
+  s.objects = {placed_object(ObjectType::Opponent, TargetAction::PunchRight, {-0.479f, -5.447f}, {0.0f, 0.0f, 0.0f}),
+               placed_object(ObjectType::Opponent, TargetAction::PunchRight, {-1.029f, -8.032f}, {0.0f, 0.0f, 0.0f})};
+  for (ScenarioObject& o : s.objects) o.heading = 1.412f * 3.14159265f / 180.0f;
+  s.goal = {{-0.276f, -11.182f}, {-2.989f, -14.669f}};
+  const ClearanceRun r = run_clearance(s, 60.0f, own_assets(s));
+  CHECK(r.goal);
+  int user_punches = 0;
+  for (const LaunchClearance& l : r.launches) user_punches += l.character == 0;
+  CHECK(user_punches == 2);
+  INFO(r.summary.min_character_what);
+  CHECK(r.summary.character_frames == 0);
+}
+
 TEST_CASE("a fight: opponents strike only from their reach, and step aside once defeated") {
   World world(shipped("fight"), clearance_test_assets());
   world.set_auto(true);
