@@ -98,7 +98,10 @@ void World::defeat(int opponent, int striker) {
 // into a hurdle's board by a turn just after the jump, a head walked into a rail) is set back out along the
 // obstacle's crossing direction, to the root's side, by the depth: as a wall stops a body, not as a
 // correction of the motion. The obstacle a target clip is crossing is left to the clip's fit
-// (obstacle_fit.h) once the launch's cross-fade is over; a ball is kept out of all but its kick.
+// (obstacle_fit.h) once the launch's cross-fade is over, but for its ends: the fit lowers or raises the body
+// and does not see a post or a hurdle's leg, which a clip that drifts sideways (a recorded duck veering off
+// its line) can run into; such a body is set in toward the middle of the span. A ball is kept out of all but
+// its kick.
 void World::keep_clear_of_obstacles(int index) {
   if (!params_.runtime.keep_clear) return;
   WorldCharacter& c = characters_[static_cast<size_t>(index)];
@@ -114,7 +117,9 @@ void World::keep_clear_of_obstacles(int index) {
     // A hurdle is left to the jump throughout: held back, its run-up would never take off.
     const bool own = c.in_target && static_cast<int>(k) == rt.target_object;
     const bool ball = o.spec.type == ObjectType::Ball;
-    if (!(is_across(o.spec.type) || ball) || (own && (ball || rt.fade_left <= 0.0f || o.spec.type == ObjectType::Hurdle))) continue;
+    if (!(is_across(o.spec.type) || ball) || (own && ball)) continue;
+    // Crossing it: only its ends are kept out of, the rest is the fit's (and the jump's, throughout).
+    const bool ends_only = own && (rt.fade_left <= 0.0f || o.spec.type == ObjectType::Hurdle);
     const glm::vec2 at = floor_xz(o.position);
     const float object_reach = 0.5f * glm::length(glm::vec2(o.spec.size.x, o.spec.size.z)) + kHurdleFootLength;
     if (glm::length(at - c.position) > object_reach + kBodyReach) continue;
@@ -146,6 +151,7 @@ void World::keep_clear_of_obstacles(int index) {
       }
       float depth = 0.0f;
       for (const ObjectSolid& s : solids_[k]) {
+        if (ends_only && s.part != SolidPart::Post && s.part != SolidPart::Leg && s.part != SolidPart::Foot) continue;
         const glm::vec3 half = s.sphere ? glm::vec3(0.5f * s.extents.x) : 0.5f * s.extents;
         if (glm::any(glm::greaterThan(low - s.centre, half)) || glm::any(glm::lessThan(high - s.centre, -half))) continue;
         for (const PlacedCapsule& f : rt.framed) depth = std::max(depth, framed_capsule_solid_depth(f, s));
@@ -154,6 +160,14 @@ void World::keep_clear_of_obstacles(int index) {
     };
     const glm::vec2 along = floor_plane::left_of(o.spec.heading);
     float depth = depth_at(push);
+    if (ends_only) {  // in toward the middle, as far as its end solids need
+      const glm::vec2 inward = glm::dot(c.position - at, along) > 0.0f ? -along : along;
+      for (int step = 0; step < 4 && depth > 0.0f; ++step) {
+        push += (depth + kClearSkin) * inward;
+        depth = depth_at(push);
+      }
+      continue;
+    }
     for (int step = 0; step < 4 && depth > 0.0f; ++step) {
       const float by = depth + kClearSkin;
       glm::vec2 best = push + by * n;
