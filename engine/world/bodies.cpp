@@ -172,12 +172,16 @@ void World::keep_clear_of_obstacles(int index) {
       const float by = depth + kClearSkin;
       glm::vec2 best = push + by * n;
       float best_depth = depth_at(best);
-      if (!ball && best_depth > 0.0f)
+      // Sideways the way out may be longer than the depth (a foot 2 cm down in a hurdle's foot, 5 cm wide,
+      // is out sideways only by the foot's width and its own): twice and four times it are tried too.
+      for (const float times : {1.0f, 2.0f, 4.0f}) {
+        if (ball || best_depth <= 0.0f) break;
         for (const glm::vec2 side : {along, -along})
-          if (best_depth > 0.0f && depth_at(push + by * side) <= 0.0f) {
-            best = push + by * side;
+          if (best_depth > 0.0f && depth_at(push + times * by * side) <= 0.0f) {
+            best = push + times * by * side;
             best_depth = 0.0f;
           }
+      }
       push = best;
       depth = best_depth;
     }

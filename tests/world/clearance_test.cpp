@@ -398,6 +398,27 @@ TEST_CASE("an opponent walking past a hurdle's end with a foot on the hurdle's f
   CHECK(r.summary.object_frames == 0);
 }
 
+TEST_CASE("a beaten opponent stepping aside onto a hurdle's foot is set off it sideways, out at once") {
+  // A random course of cmu31's (seed 2, course 1), as generated, to the float. The opponent steps aside
+  // past a hurdle's end and a toe comes down 2 cm into the hurdle's foot. The foot is 5 cm wide and 0.5 m
+  // long: a step sideways by the depth alone left the toe in it, and steps along the crossing did not get
+  // it out within the tick.
+  Scenario s = shipped("jump_cmu31");
+  s.characters[0].position = {0.0f, 0.0f};
+  s.characters[0].heading = 38.476547f * 3.14159265f / 180.0f;
+  s.objects = {placed_object(ObjectType::Opponent, TargetAction::PunchLeft, {-5.7949042f, -3.1157055f}, {0.0f, 0.0f, 0.0f}),
+               placed_object(ObjectType::Hurdle, TargetAction::Jump, {-9.5291061f, -3.8366029f}, {5.4184251f, 0.4f, 0.1f}),
+               placed_object(ObjectType::Hurdle, TargetAction::Jump, {-15.699165f, -5.1007142f}, {4.7120514f, 0.4f, 0.1f})};
+  s.objects[0].heading = 65.701569f * 3.14159265f / 180.0f;
+  s.objects[1].heading = -139.33521f * 3.14159265f / 180.0f;
+  s.objects[2].heading = -108.36002f * 3.14159265f / 180.0f;
+  s.goal = {{-11.760005f, -5.3094587f}, {-18.947453f, -4.2983937f}};
+  const ClearanceRun r = run_clearance(s, 60.0f, own_assets(s));
+  INFO(r.summary.min_object_what);
+  CHECK(r.goal);
+  CHECK(r.summary.object_frames == 0);
+}
+
 TEST_CASE("a ball just past a bar: the kick straight out of the crawl still meets it") {
   // Kept preparation leaves the crawl for the kick with a long cross-fade under way; the strike must come in
   // the kick's own pose, not part-way from the crawl's.
