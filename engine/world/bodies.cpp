@@ -26,7 +26,9 @@ using floor_plane::is_across;
 // its stream, synthesis state, planted feet and balance history, so the next frame carries on from there.
 void World::keep_apart() {
   const size_t n = characters_.size();
-  std::vector<glm::vec2> shove(n, glm::vec2(0.0f));
+  if (n < 2) return;
+  std::vector<glm::vec2>& shove = shove_;  // kept between ticks: no allocation per tick
+  shove.assign(n, glm::vec2(0.0f));
   for (size_t i = 0; i < n; ++i)
     for (size_t j = i + 1; j < n; ++j) {
       WorldCharacter& a = characters_[i];
@@ -200,8 +202,12 @@ void World::keep_bodies_apart() {
   if (n < 2 || !params_.runtime.keep_clear) return;
   constexpr float kBodyReach = 1.6f;  // m: no capsule is farther than this from the root on the floor
   const std::vector<BodyCapsule>& parts = volumes_->capsules();
-  std::vector<glm::vec2> low(n), high(n);
-  std::vector<char> placed(n, 0);
+  std::vector<glm::vec2>& low = body_low_;  // kept between ticks: no allocation per tick
+  std::vector<glm::vec2>& high = body_high_;
+  std::vector<char>& placed = body_placed_;
+  low.resize(n);
+  high.resize(n);
+  placed.assign(n, 0);
   for (size_t i = 0; i < n; ++i)
     for (size_t j = i + 1; j < n; ++j) {
       WorldCharacter& a = characters_[i];

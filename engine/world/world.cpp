@@ -583,7 +583,13 @@ void World::update_balance(int index, bool kinematics_in_scratch) {
   if (!kinematics_in_scratch) forward_kinematics(*set.skeleton, c.pose, rt.scratch.positions, &rt.scratch.rotations);
   const std::vector<glm::vec3>& positions = rt.scratch.positions;
   const std::vector<glm::quat>& rotations = rt.scratch.rotations;
-  segment_centroids(*set.skeleton, set.mass, positions, rotations, rt.centroids);
+  if (kinematics_in_scratch && rt.scratch.support_of_output) {
+    // The pose is the synthesizer's output as it left it: its body-part centroids (one per mass segment,
+    // in the same order, by the same arithmetic) are those it keeps for the next frame's smoothness term.
+    rt.centroids.assign(rt.synthesis.previous.begin(), rt.synthesis.previous.begin() + static_cast<long>(set.mass.segments.size()));
+  } else {
+    segment_centroids(*set.skeleton, set.mass, positions, rotations, rt.centroids);
+  }
   c.com = center_of_mass(set.mass, rt.centroids);
   c.contacts = rt.stream.contacts();
   if (kinematics_in_scratch && rt.scratch.support_of_output) {

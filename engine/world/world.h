@@ -454,6 +454,8 @@ class World {
   std::vector<WorldObject> objects_;
   std::vector<std::vector<ObjectSolid>> solids_;  // per object, in its own frame (object_solids.h)
   std::unique_ptr<BodyVolumes> volumes_;           // the bodies' capsules (keep_clear_of_obstacles)
+  std::vector<glm::vec2> shove_, body_low_, body_high_;  // keep_apart's and keep_bodies_apart's scratch
+  std::vector<char> body_placed_;
   std::vector<std::unique_ptr<Runtime>> runtime_;
   std::vector<LaunchRecord> launches_;
   std::vector<glm::vec2> alpha_history_;
