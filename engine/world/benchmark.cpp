@@ -158,7 +158,8 @@ CrowdBenchmark benchmark_crowd(const Scenario& scenario, std::shared_ptr<const W
     worlds.push_back(std::make_unique<World>(s, assets));
     // Unattended but always synthesizing: no launches (a target clip plays recorded frames, no synthesis).
     worlds.back()->set_auto(false);
-    worlds.back()->set_stage_timing(false);  // as a crowd's worlds: no clock reads per character
+    worlds.back()->set_stage_timing(false);  // as a crowd's worlds: no clock reads per character,
+    worlds.back()->set_alpha_history(false);  // and no alpha history
   }
   const double rss_after = resident_memory_mb();
 

@@ -69,6 +69,7 @@ std::unique_ptr<World> Crowd::make_lane(int i) {
   auto world = std::make_unique<World>(s, assets_);
   world->set_auto(true);
   world->set_stage_timing(false);
+  world->set_alpha_history(false);
   started_[static_cast<size_t>(i)] = time_;
   done_for_[static_cast<size_t>(i)] = 0.0f;
   return world;

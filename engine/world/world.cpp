@@ -184,11 +184,12 @@ void World::step() {
   keep_apart();
   keep_bodies_apart();
   for (int i = 0; i < static_cast<int>(characters_.size()); ++i) keep_clear_of_obstacles(i);
-  alpha_history_.push_back({time_, characters_[static_cast<size_t>(user_)].alpha});
-  // Trimmed in blocks, so that a tick does not move the whole history (in a crowd of worlds that was a
-  // large share of the memory traffic).
-  if (static_cast<int>(alpha_history_.size()) >= 2 * kAlphaHistory) {
-    alpha_history_.erase(alpha_history_.begin(), alpha_history_.end() - kAlphaHistory);
+  if (keep_alpha_history_) {
+    alpha_history_.push_back({time_, characters_[static_cast<size_t>(user_)].alpha});
+    // Trimmed in blocks, so that a tick does not move the whole history.
+    if (static_cast<int>(alpha_history_.size()) >= 2 * kAlphaHistory) {
+      alpha_history_.erase(alpha_history_.begin(), alpha_history_.end() - kAlphaHistory);
+    }
   }
   stage_times_.total_ms = ms_between(step_start, stage_now());
 }

@@ -110,6 +110,26 @@ TEST_CASE("the world steps at the fixed time step and keeps per-frame data reach
   CHECK(scene.objects[0].is_source);
 }
 
+TEST_CASE("a world without its alpha history (a crowd's) moves exactly as one with it") {
+  World kept(scenario("obstacles"), builtin_assets());
+  World without(scenario("obstacles"), builtin_assets());
+  without.set_alpha_history(false);
+  kept.set_auto(true);
+  without.set_auto(true);
+  for (int t = 0; t < 1500; ++t) {  // 25 s: the approach, the crawl and on
+    kept.step();
+    without.step();
+  }
+  const WorldCharacter& a = kept.characters()[0];
+  const WorldCharacter& b = without.characters()[0];
+  CHECK(a.pose.root_position == b.pose.root_position);
+  for (size_t j = 0; j < a.pose.rotations.size(); ++j) CHECK(a.pose.rotations[j] == b.pose.rotations[j]);
+  CHECK(kept.launches().size() == without.launches().size());
+  CHECK(kept.launches().size() >= 1);
+  CHECK(without.alpha_history().empty());
+  CHECK(kept.alpha_history().size() >= static_cast<size_t>(World::kAlphaHistory));
+}
+
 TEST_CASE("a user launch plays the target clip and returns to locomotion") {
   Scenario s = scenario("obstacles");
   s.auto_launch = false;
