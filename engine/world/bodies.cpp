@@ -20,58 +20,68 @@ using floor_plane::floor_xz;
 using floor_plane::forward_of;
 using floor_plane::is_across;
 
+namespace {
+
+// f(i, j, d, distance) for every two characters i < j whose roots are nearer than `within` on the floor
+// (d from i's root to j's), as they stand when the pair comes up.
+template <class F>
+void for_each_pair_within(const std::vector<WorldCharacter>& characters, float within, F&& f) {
+  for (size_t i = 0; i < characters.size(); ++i)
+    for (size_t j = i + 1; j < characters.size(); ++j) {
+      const glm::vec2 d = characters[j].position - characters[i].position;
+      const float distance = glm::length(d);
+      if (distance < within) f(i, j, d, distance);
+    }
+}
+
+}  // namespace
+
 // Characters keep their distance: two whose roots come closer than kPersonalSpace on the floor are set
-// apart along the line between them, each by the share of the closing that is its own (the one walking in
-// yields to the one standing, and is turned aside as much; both half when neither moves toward the other). The whole character moves:
-// its stream, synthesis state, planted feet and balance history, so the next frame carries on from there.
+// apart along the line between them, each by the share of the closing that is its own (closing_share; the
+// one walking in is also turned aside as much). The whole character moves: its stream, synthesis state,
+// planted feet and balance history, so the next frame carries on from there.
 void World::keep_apart() {
   const size_t n = characters_.size();
   if (n < 2) return;
   std::vector<glm::vec2>& shove = shove_;  // kept between ticks: no allocation per tick
   shove.assign(n, glm::vec2(0.0f));
-  for (size_t i = 0; i < n; ++i)
-    for (size_t j = i + 1; j < n; ++j) {
-      WorldCharacter& a = characters_[i];
-      WorldCharacter& b = characters_[j];
-      const glm::vec2 d = b.position - a.position;
-      const float distance = glm::length(d);
-      if (distance >= kFacingSpace) continue;
-      const glm::vec2 dir = distance > 1e-4f ? d / distance : forward_of(a.heading);
-      // A character's arms reach farther in front of it than to its sides or back (a guard, a fighting
-      // stance turned side on, arms swinging as it walks): each one facing the other adds its half of the
-      // extra room, so two squarely facing each other keep kFacingSpace apart.
-      const float facing = std::clamp(glm::dot(forward_of(a.heading), dir), 0.0f, 1.0f) +
-                           std::clamp(-glm::dot(forward_of(b.heading), dir), 0.0f, 1.0f);
-      float space = kPersonalSpace + 0.5f * (kFacingSpace - kPersonalSpace) * facing;
-      // One whose source is the other is let come as near as it needs to strike. Without preparation (the
-      // naive baseline) nothing stops it short of its launch point, so it launches only there: it is let
-      // come that near. Prepared, it arrives within its arrival radius of the launch point and strikes from
-      // where it stands (update_arrival). A punch whose reach is so short (a motion set's jab) that the
-      // facing space keeps its launch point out of that radius is let come to half the radius of it.
-      auto striking_distance = [&](size_t index, size_t other) {
-        const WorldCharacter& c = characters_[index];
-        if (!c.has_source || c.source_character != static_cast<int>(other)) return kFacingSpace;
-        const float reach = glm::length(c.source_object_position - c.source);
-        if (!preparation_) return reach - kStrikeSlack;
-        const float radius = arrival_->radius(runtime_[index]->source_closing_speed);
-        return reach + radius < kFacingSpace ? reach + 0.5f * radius : kFacingSpace;
-      };
-      space = std::max(std::min({space, striking_distance(i, j), striking_distance(j, i)}), kPersonalSpace);
-      if (distance >= space) continue;
-      const float va = std::max(0.0f, glm::dot(runtime_[i]->velocity, dir));
-      const float vb = std::max(0.0f, -glm::dot(runtime_[j]->velocity, dir));
-      const float share_a = va + vb > 1e-4f ? va / (va + vb) : 0.5f;
-      const float gap = space - distance;
-      // The one walking in is also turned aside, toward the side its way already leans to, so that it goes
-      // round the other instead of pressing against it.
-      const glm::vec2 across(-dir.y, dir.x);
-      auto aside = [&](const glm::vec2& velocity) {
-        const float lean = glm::dot(velocity, across);
-        return (lean >= 0.0f ? 1.0f : -1.0f) * across;
-      };
-      shove[i] += share_a * gap * (-dir + aside(runtime_[i]->velocity));
-      shove[j] += (1.0f - share_a) * gap * (dir + aside(runtime_[j]->velocity));
-    }
+  for_each_pair_within(characters_, kFacingSpace, [&](size_t i, size_t j, glm::vec2 d, float distance) {
+    const WorldCharacter& a = characters_[i];
+    const WorldCharacter& b = characters_[j];
+    const glm::vec2 dir = distance > 1e-4f ? d / distance : forward_of(a.heading);
+    // A character's arms reach farther in front of it than to its sides or back (a guard, a fighting
+    // stance turned side on, arms swinging as it walks): each one facing the other adds its half of the
+    // extra room, so two squarely facing each other keep kFacingSpace apart.
+    const float facing = std::clamp(glm::dot(forward_of(a.heading), dir), 0.0f, 1.0f) +
+                         std::clamp(-glm::dot(forward_of(b.heading), dir), 0.0f, 1.0f);
+    float space = kPersonalSpace + 0.5f * (kFacingSpace - kPersonalSpace) * facing;
+    // One whose source is the other is let come as near as it needs to strike. Without preparation (the
+    // naive baseline) nothing stops it short of its launch point, so it launches only there: it is let
+    // come that near. Prepared, it arrives within its arrival radius of the launch point and strikes from
+    // where it stands (update_arrival). A punch whose reach is so short (a motion set's jab) that the
+    // facing space keeps its launch point out of that radius is let come to half the radius of it.
+    auto striking_distance = [&](size_t index, size_t other) {
+      const WorldCharacter& c = characters_[index];
+      if (!c.has_source || c.source_character != static_cast<int>(other)) return kFacingSpace;
+      const float reach = glm::length(c.source_object_position - c.source);
+      if (!preparation_) return reach - kStrikeSlack;
+      const float radius = arrival_->radius(runtime_[index]->source_closing_speed);
+      return reach + radius < kFacingSpace ? reach + 0.5f * radius : kFacingSpace;
+    };
+    space = std::max(std::min({space, striking_distance(i, j), striking_distance(j, i)}), kPersonalSpace);
+    if (distance >= space) return;
+    const float share_a = closing_share(i, j, dir);
+    const float gap = space - distance;
+    // The one walking in is also turned aside, toward the side its way already leans to, so that it goes
+    // round the other instead of pressing against it.
+    const glm::vec2 across(-dir.y, dir.x);
+    auto aside = [&](const glm::vec2& velocity) {
+      const float lean = glm::dot(velocity, across);
+      return (lean >= 0.0f ? 1.0f : -1.0f) * across;
+    };
+    shove[i] += share_a * gap * (-dir + aside(runtime_[i]->velocity));
+    shove[j] += (1.0f - share_a) * gap * (dir + aside(runtime_[j]->velocity));
+  });
   // At most a brisk step's pace per tick: a character pressed between two others is eased out over a few
   // ticks rather than thrown (the pushes of both would add up to a jump).
   const float most = kMaxShoveSpeed * params_.runtime.fixed_dt;
@@ -208,41 +218,44 @@ void World::keep_bodies_apart() {
   low.resize(n);
   high.resize(n);
   placed.assign(n, 0);
-  for (size_t i = 0; i < n; ++i)
-    for (size_t j = i + 1; j < n; ++j) {
-      WorldCharacter& a = characters_[i];
-      WorldCharacter& b = characters_[j];
-      const glm::vec2 d = b.position - a.position;
-      const float distance = glm::length(d);
-      if (distance >= 2.0f * kBodyReach) continue;
-      for (size_t k : {i, j})
-        if (!placed[k]) {
-          place_body(static_cast<int>(k), low[k], high[k]);
-          placed[k] = 1;
-        }
-      // Floor boxes apart: no capsule of one meets one of the other.
-      if (glm::any(glm::greaterThan(low[i], high[j])) || glm::any(glm::greaterThan(low[j], high[i]))) continue;
-      const std::vector<PlacedCapsule>& ca = runtime_[i]->capsules;
-      const std::vector<PlacedCapsule>& cb = runtime_[j]->capsules;
-      float nearest = std::numeric_limits<float>::infinity();
-      for (size_t p = 0; p < ca.size(); ++p) {
-        if (a.arm_out_at == static_cast<int>(j) && is_striking_limb(a.playing, parts[p].part)) continue;
-        for (size_t q = 0; q < cb.size(); ++q) {
-          if (b.arm_out_at == static_cast<int>(i) && is_striking_limb(b.playing, parts[q].part)) continue;
-          nearest = std::min(nearest, segment_segment_distance(ca[p].a, ca[p].b, cb[q].a, cb[q].b) - ca[p].radius - cb[q].radius);
-        }
+  for_each_pair_within(characters_, 2.0f * kBodyReach, [&](size_t i, size_t j, glm::vec2 d, float distance) {
+    const WorldCharacter& a = characters_[i];
+    const WorldCharacter& b = characters_[j];
+    for (size_t k : {i, j})
+      if (!placed[k]) {
+        place_body(static_cast<int>(k), low[k], high[k]);
+        placed[k] = 1;
       }
-      if (nearest >= kBodyGap) continue;
-      const glm::vec2 dir = distance > 1e-4f ? d / distance : forward_of(a.heading);
-      const float va = std::max(0.0f, glm::dot(runtime_[i]->velocity, dir));
-      const float vb = std::max(0.0f, -glm::dot(runtime_[j]->velocity, dir));
-      const float share_a = va + vb > 1e-4f ? va / (va + vb) : 0.5f;
-      const float gap = kBodyGap - nearest;
-      const float most = kMaxShoveSpeed * params_.runtime.fixed_dt;
-      displace(static_cast<int>(i), -std::min(share_a * gap, most) * dir);
-      displace(static_cast<int>(j), std::min((1.0f - share_a) * gap, most) * dir);
-      for (size_t k : {i, j}) placed[k] = 0;
+    // Floor boxes apart: no capsule of one meets one of the other.
+    if (glm::any(glm::greaterThan(low[i], high[j])) || glm::any(glm::greaterThan(low[j], high[i]))) return;
+    const std::vector<PlacedCapsule>& ca = runtime_[i]->capsules;
+    const std::vector<PlacedCapsule>& cb = runtime_[j]->capsules;
+    float nearest = std::numeric_limits<float>::infinity();
+    for (size_t p = 0; p < ca.size(); ++p) {
+      if (a.arm_out_at == static_cast<int>(j) && is_striking_limb(a.playing, parts[p].part)) continue;
+      for (size_t q = 0; q < cb.size(); ++q) {
+        if (b.arm_out_at == static_cast<int>(i) && is_striking_limb(b.playing, parts[q].part)) continue;
+        nearest = std::min(nearest, segment_segment_distance(ca[p].a, ca[p].b, cb[q].a, cb[q].b) - ca[p].radius - cb[q].radius);
+      }
     }
+    if (nearest >= kBodyGap) return;
+    const glm::vec2 dir = distance > 1e-4f ? d / distance : forward_of(a.heading);
+    const float share_a = closing_share(i, j, dir);
+    const float gap = kBodyGap - nearest;
+    const float most = kMaxShoveSpeed * params_.runtime.fixed_dt;
+    displace(static_cast<int>(i), -std::min(share_a * gap, most) * dir);
+    displace(static_cast<int>(j), std::min((1.0f - share_a) * gap, most) * dir);
+    for (size_t k : {i, j}) placed[k] = 0;
+  });
+}
+
+// The share of setting characters i and j apart along `dir` (from i toward j) that falls to i: the share of
+// the closing that is its own (the one walking in yields to the one standing), half each when neither
+// moves toward the other.
+float World::closing_share(size_t i, size_t j, glm::vec2 dir) const {
+  const float vi = std::max(0.0f, glm::dot(runtime_[i]->velocity, dir));
+  const float vj = std::max(0.0f, -glm::dot(runtime_[j]->velocity, dir));
+  return vi + vj > 1e-4f ? vi / (vi + vj) : 0.5f;
 }
 
 // The body's capsules this frame into the character's Runtime::capsules, and their box on the floor.

@@ -443,6 +443,7 @@ class World {
   void keep_apart();
   void keep_bodies_apart();
   void place_body(int index, glm::vec2& low, glm::vec2& high);
+  float closing_share(size_t i, size_t j, glm::vec2 dir) const;
   void keep_clear_of_obstacles(int index);
   void displace(int index, glm::vec2 offset);
 

@@ -72,6 +72,22 @@ ClearanceRun run_clearance(const Scenario& s, float seconds = 40.0f, std::shared
   return r;
 }
 
+// A shipped fight's motions and parameters on a course of its own: the user at the origin, turned
+// `user_heading` degrees, and two opponents throwing `punch`, both turned `opponents_heading` degrees.
+Scenario two_opponents(const std::string& fight, float user_heading, TargetAction punch, glm::vec2 first,
+                       glm::vec2 second, float opponents_heading, std::vector<glm::vec2> goal) {
+  constexpr float kRadians = 3.14159265f / 180.0f;
+  Scenario s = shipped(fight);
+  s.characters.resize(1);
+  s.characters[0].position = {0.0f, 0.0f};
+  s.characters[0].heading = user_heading * kRadians;
+  s.objects = {placed_object(ObjectType::Opponent, punch, first, glm::vec3(0.0f)),
+               placed_object(ObjectType::Opponent, punch, second, glm::vec3(0.0f))};
+  for (ScenarioObject& o : s.objects) o.heading = opponents_heading * kRadians;
+  s.goal = std::move(goal);
+  return s;
+}
+
 }  // namespace
 
 TEST_CASE("clearance primitives: segment to box and segment to segment, signed") {
@@ -256,14 +272,8 @@ TEST_CASE("two opponents in a row: the first one beaten steps aside past the sec
   // A random course (seed 1, course 112): the user punches the nearer of two opponents standing 2.1 m apart
   // in its way. The beaten one steps aside past the other, whose guard is held out toward the user: the
   // roots stay more than the personal space apart, but a hand had gone 6 cm into the other's hand.
-  Scenario s = shipped("fight");
-  s.characters.resize(1);
-  s.characters[0].position = {0.0f, 0.0f};
-  s.characters[0].heading = 177.684f * 3.14159265f / 180.0f;
-  s.objects = {placed_object(ObjectType::Opponent, TargetAction::PunchLeft, {1.471f, -3.888f}, {0.0f, 0.0f, 0.0f}),
-               placed_object(ObjectType::Opponent, TargetAction::PunchLeft, {2.803f, -5.561f}, {0.0f, 0.0f, 0.0f})};
-  for (ScenarioObject& o : s.objects) o.heading = -17.964f * 3.14159265f / 180.0f;
-  s.goal = {{2.678f, -8.260f}, {1.699f, -11.413f}};
+  const Scenario s = two_opponents("fight", 177.684f, TargetAction::PunchLeft, {1.471f, -3.888f}, {2.803f, -5.561f},
+                                   -17.964f, {{2.678f, -8.260f}, {1.699f, -11.413f}});
   const ClearanceRun r = run_clearance(s);
   INFO(r.summary.min_character_what);
   CHECK(r.goal);
@@ -276,14 +286,8 @@ TEST_CASE("a punch shorter than the facing space: the user still comes near enou
   // the 1 m two facing characters were held apart at: the user stood 0.1 m short of its launch point,
   // outside its arrival radius, turning this way and that while the opponent kept punching, and never
   // reached its goal.
-  Scenario s = shipped("fight_cmu31");
-  s.characters.resize(1);
-  s.characters[0].position = {0.0f, 0.0f};
-  s.characters[0].heading = 178.015f * 3.14159265f / 180.0f;
-  s.objects = {placed_object(ObjectType::Opponent, TargetAction::PunchRight, {-0.479f, -5.447f}, {0.0f, 0.0f, 0.0f}),
-               placed_object(ObjectType::Opponent, TargetAction::PunchRight, {-1.029f, -8.032f}, {0.0f, 0.0f, 0.0f})};
-  for (ScenarioObject& o : s.objects) o.heading = 1.412f * 3.14159265f / 180.0f;
-  s.goal = {{-0.276f, -11.182f}, {-2.989f, -14.669f}};
+  const Scenario s = two_opponents("fight_cmu31", 178.015f, TargetAction::PunchRight, {-0.479f, -5.447f},
+                                   {-1.029f, -8.032f}, 1.412f, {{-0.276f, -11.182f}, {-2.989f, -14.669f}});
   const ClearanceRun r = run_clearance(s, 60.0f, own_assets(s));
   CHECK(r.goal);
   int user_punches = 0;
