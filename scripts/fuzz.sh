@@ -4,8 +4,9 @@
 #   TARGET: bvh, gltf, manifest, scenario, params, policy or retarget
 # Builds build-fuzz/ (clang, libFuzzer + ASan + UBSan) when needed. New inputs go to a scratch corpus
 # outside the repository ($PREP_FUZZ_DIR/TARGET, default /tmp/prep-fuzz/TARGET; kept between runs, so a
-# later run goes on from there); tests/fuzz/corpus/TARGET, the seeds, is only read. A failing input is
-# written to $PREP_FUZZ_DIR/artifacts/. Prints the executions and the coverage at the end.
+# later run goes on from there); the seeds (tests/fuzz/corpus/TARGET and the build's fuzz-seeds/TARGET) are
+# only read. A failing input is written to $PREP_FUZZ_DIR/artifacts/. Prints the executions and the
+# coverage at the end.
 #
 #   scripts/fuzz.sh --smoke SECONDS
 # The smoke run of the tests (scripts/test.sh): every target for SECONDS, two at a time, from its seeds
@@ -44,8 +45,7 @@ if [ "$target" = --smoke ]; then
   exit "$failed"
 fi
 
-seeds="$here/tests/fuzz/corpus/$target"
-[ -d "$seeds" ] || { echo "fuzz: no target '$target' (no $seeds)" >&2; exit 2; }
+[ -f "$here/tests/fuzz/${target}_fuzz.cpp" ] || { echo "fuzz: no target '$target' (no tests/fuzz/${target}_fuzz.cpp)" >&2; exit 2; }
 
 if ! command -v clang++-14 >/dev/null || [ ! -e "$(clang++-14 -print-resource-dir)/lib/linux/libclang_rt.fuzzer-x86_64.a" ]; then
   echo "fuzz: needs clang-14 with libFuzzer: sudo apt-get install clang-14 libclang-rt-14-dev" >&2
@@ -71,9 +71,11 @@ status=0
 start=$SECONDS
 # The scratch folder comes first: libFuzzer writes what it finds into its first corpus folder.
 # Seeds the build generated (tests/fuzz/bvh_seeds.cmake) are read beside the checked-in ones.
-generated=()
-[ -d "$build/fuzz-seeds/$target" ] && generated=("$build/fuzz-seeds/$target")
-nice -n 15 "$build/prep_fuzz_$target" "${flags[@]}" "$@" "$scratch/$target" "$seeds" "${generated[@]}" >"$log" 2>&1 || status=$?
+seeds=()
+for folder in "$here/tests/fuzz/corpus/$target" "$build/fuzz-seeds/$target"; do
+  [ -d "$folder" ] && seeds+=("$folder")
+done
+nice -n 15 "$build/prep_fuzz_$target" "${flags[@]}" "$@" "$scratch/$target" "${seeds[@]}" >"$log" 2>&1 || status=$?
 # The last status line holds the coverage (cov: edges, ft: features); -print_final_stats the executions.
 last="$(grep -aE '#[0-9]+.*cov: ' "$log" | tail -1 || true)"
 execs="$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)"

@@ -16,8 +16,9 @@ inline std::string_view bytes(const std::uint8_t* data, std::size_t size) {
   return {reinterpret_cast<const char*>(data), size};
 }
 
-// The folder of the fixed files the targets use besides their input (a humanoid BVH and a taller one).
-inline std::string data_dir() { return std::string(PREP_SOURCE_DIR) + "/tests/fuzz/data"; }
+// The folder of the fixed files the targets use besides their input (a humanoid BVH and a taller one),
+// written by the build (bvh_seeds.cmake).
+inline std::string data_dir() { return std::string(PREP_FUZZ_SEED_DIR) + "/data"; }
 
 // Runs `load` on one input. The loader may accept it, or refuse it with an InputError whose message starts
 // with the file it names ("FILE: ..." or "FILE:LINE: ...") and says something after that; when `source` is

@@ -1,5 +1,5 @@
-// Feeds each input to parse_motion_set as the text of a motion-set manifest placed in tests/fuzz/data, so
-// that "folder": "." (or "tests/fuzz/data" from the repository root) finds the two small humanoid BVH files
+// Feeds each input to parse_motion_set as the text of a motion-set manifest placed in the folder of the
+// build's humanoids (fuzz_support.h: data_dir), so that "folder": "." finds the two small humanoid BVH files
 // there: the manifest's fields, frame ranges, loops, T_t, floors, steering and the retargeting of the
 // taller performer. Failure: anything but an InputError naming a file (the manifest, or a BVH it lists: a
 // crash, a sanitizer report, a leak, an escaping exception, an input slower than the run's -timeout).

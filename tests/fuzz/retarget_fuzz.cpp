@@ -1,5 +1,5 @@
 // Feeds each input to parse_joint_map as the text of a retarget joint map, then builds a Retargeter with
-// the map from the humanoid of tests/fuzz/data onto its taller variant and retargets one frame. Failure:
+// the map from the build's humanoid (fuzz_support.h: data_dir) onto its taller variant and retargets one frame. Failure:
 // anything but an InputError naming "fuzz.json" or the std::invalid_argument the Retargeter documents for
 // a map that leaves the roots unmapped (a crash, a sanitizer report, a leak, another exception, an input
 // slower than the run's -timeout).

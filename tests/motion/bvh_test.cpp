@@ -351,12 +351,13 @@ TEST_CASE("malformed BVH files give an error naming the file and the line") {
 }
 
 TEST_CASE("lengths past 1e6 m and frame times past 1e-5..1e4 s give an error naming the file and the line") {
-  // Finite in the file's doubles, but infinite in our floats (found by the BVH fuzz target, whose corpus
-  // keeps these inputs): an OFFSET of 1e39 cm would have been read as infinity and written back as "inf".
-  CHECK_THROWS_WITH_AS(read_bvh(test::repo() + "/tests/fuzz/corpus/bvh/offset_overflow.bvh"),
+  // Finite in the file's doubles, but infinite in our floats (found by the BVH fuzz target, whose seeds the
+  // build writes these inputs among): an OFFSET of 1e39 cm would have been read as infinity and written
+  // back as "inf".
+  CHECK_THROWS_WITH_AS(read_bvh(test::fuzz_seeds() + "/bvh/offset_overflow.bvh"),
                        doctest::Contains("offset_overflow.bvh:8: the OFFSET is 1e+37 m after unit scaling: more than the 1e6 m a length may be"),
                        InputError);
-  CHECK_THROWS_WITH_AS(read_bvh(test::repo() + "/tests/fuzz/corpus/bvh/frame_time_tiny.bvh"),
+  CHECK_THROWS_WITH_AS(read_bvh(test::fuzz_seeds() + "/bvh/frame_time_tiny.bvh"),
                        doctest::Contains("frame_time_tiny.bvh:18: frame time '1e-300' is outside 1e-05 to 10000 seconds"),
                        InputError);
   CHECK_THROWS_WITH_AS(parse_bvh(replace_line(kSmall, 20, "1.5 1e300 0 0 0 0 45 0 0"), "far.bvh"),
