@@ -51,7 +51,24 @@ std::vector<glm::vec2> convex_hull(std::vector<glm::vec2> points) {
   return hull;
 }
 
-bool SupportPolygon::contains(glm::vec2 p) const { return !empty() && distance_outside(p) <= kEpsilon; }
+bool SupportPolygon::contains(glm::vec2 p) const {
+  if (hull.size() >= 3) {
+    // Short cuts that give what distance_outside would, without its distances to every edge: left of (or
+    // on) every counter-clockwise edge is inside (distance 0); more than ten times the tolerance right of
+    // an edge's line is further than that from the whole polygon (rounding is far below the margin).
+    bool left_of_all = true;
+    for (size_t i = 0; i < hull.size(); ++i) {
+      const glm::vec2 a = hull[i], b = i + 1 < hull.size() ? hull[i + 1] : hull[0];
+      const float c = cross(a, b, p);
+      if (c >= 0.0f) continue;
+      const glm::vec2 ab = b - a;
+      if (c * c > 100.0f * kEpsilon * kEpsilon * glm::dot(ab, ab)) return false;
+      left_of_all = false;
+    }
+    if (left_of_all) return true;
+  }
+  return !empty() && distance_outside(p) <= kEpsilon;
+}
 
 float SupportPolygon::distance_outside(glm::vec2 p) const {
   if (hull.empty()) return INFINITY;
@@ -60,7 +77,7 @@ float SupportPolygon::distance_outside(glm::vec2 p) const {
   bool inside = true;
   float nearest = INFINITY;
   for (size_t i = 0; i < hull.size(); ++i) {
-    const glm::vec2 a = hull[i], b = hull[(i + 1) % hull.size()];
+    const glm::vec2 a = hull[i], b = i + 1 < hull.size() ? hull[i + 1] : hull[0];
     if (cross(a, b, p) < 0.0f) inside = false;  // right of a counter-clockwise edge: outside
     nearest = std::min(nearest, distance_to_segment(p, a, b));
   }
@@ -76,7 +93,7 @@ glm::vec2 SupportPolygon::center() const {
   float area2 = 0.0f;
   glm::vec2 sum(0.0f);
   for (size_t i = 0; i < hull.size(); ++i) {
-    const glm::vec2 a = hull[i] - mean, b = hull[(i + 1) % hull.size()] - mean;
+    const glm::vec2 a = hull[i] - mean, b = hull[i + 1 < hull.size() ? i + 1 : 0] - mean;
     const float c = a.x * b.y - b.x * a.y;
     area2 += c;
     sum += (a + b) * c;

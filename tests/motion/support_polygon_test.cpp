@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <random>
 
 using namespace prep;
 
@@ -37,6 +38,35 @@ TEST_CASE("support polygon: contains is inclusive on edges and vertices") {
   CHECK(sq.distance_outside({1, 1}) == 0.0f);
   CHECK(sq.distance_outside({3, 1}) == doctest::Approx(1.0f));
   CHECK(sq.distance_outside({3, 3}) == doctest::Approx(std::sqrt(2.0f)));
+}
+
+TEST_CASE("support polygon: contains answers as distance_outside does, near edges too") {
+  // contains takes a short cut for points inside; it must agree with the distance everywhere, on both
+  // sides of an edge within its tolerance included.
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(-0.3f, 0.3f);
+  int inside = 0, near_edge = 0;
+  for (int polygon = 0; polygon < 200; ++polygon) {
+    std::vector<glm::vec2> points;
+    for (int k = 0; k < 3 + polygon % 6; ++k) points.push_back({u(rng), u(rng)});
+    SupportPolygon sp;
+    sp.hull = convex_hull(points);
+    for (int k = 0; k < 200; ++k) {
+      glm::vec2 p(u(rng), u(rng));
+      if (k % 4 == 0 && sp.hull.size() >= 2) {  // on an edge, nudged by up to 2e-6 or 2e-5 m either way
+        const glm::vec2 a = sp.hull[static_cast<size_t>(k) % sp.hull.size()];
+        const glm::vec2 b = sp.hull[(static_cast<size_t>(k) + 1) % sp.hull.size()];
+        const float nudge = k % 8 == 0 ? 2e-6f : 2e-5f;
+        p = a + 0.37f * (b - a) + glm::vec2(nudge * u(rng) / 0.3f, nudge * u(rng) / 0.3f);
+        ++near_edge;
+      }
+      const bool by_distance = !sp.empty() && sp.distance_outside(p) <= 1e-6f;
+      inside += by_distance;
+      REQUIRE(sp.contains(p) == by_distance);
+    }
+  }
+  CHECK(inside > 5000);
+  CHECK(near_edge == 10000);
 }
 
 TEST_CASE("support polygon: the centre is the area centroid") {
