@@ -46,6 +46,15 @@ Synthesizer::Synthesizer(std::shared_ptr<const Skeleton> skeleton, BodyMap body,
   for (int j = 0; j < skeleton_->size(); ++j) {
     if (leg[static_cast<size_t>(j)]) leg_joints_.push_back(j);
   }
+  std::vector<char> foot(static_cast<size_t>(skeleton_->size()), 0);
+  for (const LegChain& chain : body_.legs) {
+    if (chain.ankle >= 0) foot[static_cast<size_t>(chain.ankle)] = 1;
+  }
+  for (int j = 0; j < skeleton_->size(); ++j) {
+    const int parent = skeleton_->joints[static_cast<size_t>(j)].parent;
+    if (parent >= 0 && foot[static_cast<size_t>(parent)]) foot[static_cast<size_t>(j)] = 1;
+    if (foot[static_cast<size_t>(j)]) foot_joints_.push_back(j);
+  }
   // Below an optimized joint but read by no body part: the optimizer's trial kinematics skip them.
   std::vector<char> below(static_cast<size_t>(skeleton_->size()), 0);
   for (int j = 0; j < skeleton_->size(); ++j) {
@@ -208,9 +217,14 @@ void Synthesizer::stage_floor(SynthesisScratch& s, Pose& out, bool kinematics_gi
     s.support_of_output = false;  // a pose the stages before did not make
   }
   const float root_height = out.root_position.y;
-  // Usually nothing is below the floor and the kinematics stand; else they are taken again.
-  if (keep_toes_above_floor(*skeleton_, body_, out, s.positions, s.rotations) > 0 || out.root_position.y != root_height) {
+  // Usually nothing is below the floor and the kinematics stand. A body lifted is taken again whole; feet
+  // pitched up about their ankles only from the ankles down (the joints above are as they were).
+  const int turned = keep_toes_above_floor(*skeleton_, body_, out, s.positions, s.rotations);
+  if (out.root_position.y != root_height) {
     forward_kinematics(*skeleton_, out, s.positions, &s.rotations);
+    s.support_of_output = false;
+  } else if (turned > 0) {
+    chain_kinematics(*skeleton_, foot_joints_, out, s.positions, s.rotations);
     s.support_of_output = false;
   }
 }

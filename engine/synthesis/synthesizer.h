@@ -132,6 +132,7 @@ class Synthesizer {
   BlendCurves curves_;
   BalanceModel balance_model_;
   std::vector<int> leg_joints_;  // the leg chains (hip to toe tip) and their ancestors, in skeleton order
+  std::vector<int> foot_joints_;  // the ankles and every joint below them, in skeleton order
   std::vector<int> balance_stale_;  // joints whose kinematics the balance optimizer leaves stale, in skeleton order
 };
 

@@ -86,3 +86,44 @@ TEST_CASE("the synthesizer leaves the forward kinematics of the pose it returns,
     check_kinematics_left_in_scratch(*set, false);
   }
 }
+
+TEST_CASE("the floor stage's kinematics after a toe is pitched up or the body lifted equal a fresh pass") {
+  // A foot turned about its ankle needs the kinematics again from the ankle down only; a body lifted needs
+  // them whole. Either way they must be those of the pose returned, to the bit.
+  const Params params;
+  const MotionSet set = make_builtin_motion_set(params);
+  const Synthesizer synth(set, params);
+  const int walk = find_cyclic_clip(set, Role::Walk);
+  REQUIRE(walk >= 0);
+  const Clip& clip = set.clips[static_cast<size_t>(walk)].clip;
+  const int ankle = set.body.legs[0].ankle;
+  SynthesisScratch scratch = synth.make_scratch();
+  std::vector<glm::vec3> positions;
+  std::vector<glm::quat> rotations;
+  int pitched_only = 0, lifted = 0;
+  for (size_t f = 0; f < clip.frames.size(); ++f) {
+    for (float sink : {0.0f, 0.02f, 0.3f}) {  // as it is, its toes into the floor, the whole body into it
+      Pose pose = clip.frames[f];
+      pose.root_position.y -= sink;
+      // The left foot pitched toe-down by 25 degrees about the ankle's local x.
+      pose.rotations[static_cast<size_t>(ankle)] =
+          glm::angleAxis(0.44f, glm::vec3(1.0f, 0.0f, 0.0f)) * pose.rotations[static_cast<size_t>(ankle)];
+      const float root_before = pose.root_position.y;
+      const Pose before = pose;
+      synth.stage_floor(scratch, pose, false);
+      bool turned = false;
+      for (size_t j = 0; j < pose.rotations.size(); ++j) turned = turned || pose.rotations[j] != before.rotations[j];
+      pitched_only += turned && pose.root_position.y == root_before;
+      lifted += pose.root_position.y != root_before;
+      forward_kinematics(synth.skeleton(), pose, positions, &rotations);
+      for (size_t j = 0; j < positions.size(); ++j) {
+        CAPTURE(f);
+        CAPTURE(j);
+        REQUIRE(scratch.positions[j] == positions[j]);
+        REQUIRE(scratch.rotations[j] == rotations[j]);
+      }
+    }
+  }
+  CHECK(pitched_only > 10);  // both ways were taken
+  CHECK(lifted > 10);
+}
