@@ -1,6 +1,7 @@
 #include "engine/control/controller.h"
 
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
 
 #include <algorithm>
@@ -26,13 +27,20 @@ void AlphaFilter::reset(float alpha) {
   std::fill(history_.begin(), history_.end(), alpha);
   count_ = static_cast<int>(history_.size());
   value_ = alpha;
+  value_pushed_ = false;  // not the filter's sum: the next push takes it
+  same_run_ = count_;
 }
 
 float AlphaFilter::push(float alpha) {
   const int n = static_cast<int>(history_.size());
+  const bool repeated = count_ == n && std::memcmp(&alpha, &history_[static_cast<size_t>(head_)], sizeof alpha) == 0;
+  same_run_ = repeated ? same_run_ + 1 : 1;
   head_ = head_ + 1 == n ? 0 : head_ + 1;
   history_[static_cast<size_t>(head_)] = alpha;
   if (count_ < n) ++count_;
+  // The window and the one before it hold the same value throughout: the sum below would be the one the
+  // last push took, to the bit (a level held for long, e.g. full preparation at the source).
+  if (same_run_ > n && value_pushed_) return value_;
   // Newest first: k ticks ago is head_ - k, wrapping once from the ring's start to its end.
   float sum = 0.0f;
   const float* w = weights_.data();
@@ -41,6 +49,7 @@ float AlphaFilter::push(float alpha) {
   for (int k = 0; k < before_wrap; ++k) sum += w[k] * h[head_ - k];
   for (int k = before_wrap; k < count_; ++k) sum += w[k] * h[head_ - k + n];
   value_ = sum / weight_sums_[static_cast<size_t>(count_ - 1)];
+  value_pushed_ = true;
   return value_;
 }
 

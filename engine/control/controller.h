@@ -49,6 +49,8 @@ class AlphaFilter {
   std::vector<float> history_;  // ring buffer
   int head_ = 0, count_ = 0;
   float value_ = 0.0f;
+  bool value_pushed_ = false;  // value_ is the sum push() took (not reset()'s level)
+  int same_run_ = 0;           // the newest samples in a row with the same bits
 };
 
 // Where things are on the floor, in world coordinates (x, z).

@@ -41,7 +41,9 @@ TEST_CASE("the Gaussian alpha filter answers a step like erf(t / (sigma sqrt 2))
 
 TEST_CASE("the alpha filter's ring walk gives the same floats as the weighted sum taken tap by tap") {
   // The filter as the paper's Gaussian reads: sum over k of w_k alpha(t - k dt), divided by the sum of the
-  // weights used, each k's sample found by index arithmetic. push() walks the ring in two runs instead.
+  // weights used, each k's sample found by index arithmetic. push() walks the ring in two runs instead,
+  // and skips the sum when the window holds one level throughout and held it the push before: the levels
+  // here come in runs, longer and shorter than the window, and the reset is followed by its own level.
   for (const float sigma : {0.25f, 0.1f, 0.0f}) {
     CAPTURE(sigma);
     const float dt = 1.0f / 60.0f;
@@ -55,13 +57,22 @@ TEST_CASE("the alpha filter's ring walk gives the same floats as the weighted su
     int head = 0, count = 0;
     std::mt19937 rng(7);
     std::uniform_real_distribution<float> level(0.0f, 1.0f);
-    for (int tick = 0; tick < 3000; ++tick) {
-      if (tick == 1000) {  // a reset part way: the ring filled with one level
+    std::uniform_int_distribution<int> run_length(1, 3 * n + 2);
+    float a = 0.0f;
+    int run_left = 0, skipped = 0;
+    for (int tick = 0; tick < 6000; ++tick) {
+      if (tick == 1000 || tick == 4000) {  // a reset part way: the ring filled with one level
         f.reset(0.4f);
         std::fill(ring.begin(), ring.end(), 0.4f);
         count = n;
+        a = 0.4f;
+        run_left = run_length(rng);
       }
-      const float a = level(rng);
+      if (run_left-- <= 0) {
+        a = tick % 3 == 0 ? level(rng) : static_cast<float>(tick % 2);  // a level, or full or none
+        run_left = run_length(rng);
+      }
+      skipped += count == n && run_left > 0;
       head = (head + 1) % n;
       ring[static_cast<size_t>(head)] = a;
       if (count < n) ++count;
@@ -72,6 +83,7 @@ TEST_CASE("the alpha filter's ring walk gives the same floats as the weighted su
       }
       REQUIRE(f.push(a) == sum / weight);
     }
+    CHECK(skipped > 1000);  // long runs were held
   }
 }
 
