@@ -3,6 +3,7 @@
 #include "engine/motion/slerp.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <stdexcept>
 
@@ -10,7 +11,9 @@ namespace prep {
 
 BlendCurves make_blend_curves(const Skeleton& skeleton, const BodyMap& body, const BlendParams& params) {
   const int n = skeleton.size();
+  static std::atomic<std::uint64_t> next_id{1};
   BlendCurves curves;
+  curves.id = next_id++;
   if (params.method == "linear") {
     curves.linear = true;
   } else if (params.method != "ours") {

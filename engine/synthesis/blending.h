@@ -3,6 +3,7 @@
 #pragma once
 
 #include <glm/gtc/quaternion.hpp>
+#include <cstdint>
 #include <vector>
 
 #include "engine/motion/body_map.h"
@@ -22,6 +23,9 @@ struct BlendCurves {
   // evaluated once per curve rather than once per joint (same values).
   std::vector<float> curve_C, curve_c;
   std::vector<int> curve_of_joint;
+  // Different for every set of curves make_blend_curves builds (a copy keeps it): weights computed from
+  // these curves may be kept by it and reused for the same alpha.
+  std::uint64_t id = 0;
 };
 
 // Defaults from BlendParams: upper-body joints (body.upper_body) take C_upper, every other joint (root,

@@ -1,6 +1,7 @@
 #include "engine/synthesis/synthesizer.h"
 
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
 
 #include "engine/motion/kinematics.h"
@@ -83,7 +84,11 @@ SynthesisScratch Synthesizer::make_scratch() const {
 }
 
 void Synthesizer::stage_blend(const SynthesisInput& in, SynthesisScratch& s, Pose& out) const {
-  blend_weights(curves_, in.alpha, s.weights.data());                                      // Eq. 1
+  if (s.weights_curves != curves_.id || std::memcmp(&s.weights_alpha, &in.alpha, sizeof in.alpha) != 0) {
+    blend_weights(curves_, in.alpha, s.weights.data());                                    // Eq. 1
+    s.weights_alpha = in.alpha;
+    s.weights_curves = curves_.id;
+  }
   blend_joint_rotations(*in.locomotion, *in.reference, s.weights.data(), out);             // Eq. 2
   const size_t r = static_cast<size_t>(body_.root);
   out.rotations[r] = blend_root_rotation(in.locomotion->rotations[r], in.reference->rotations[r], s.weights[r]);

@@ -13,6 +13,7 @@
 
 #include <array>
 #include <memory>
+#include <cstdint>
 #include <vector>
 
 #include "engine/motion/body_map.h"
@@ -80,6 +81,10 @@ struct SynthesisReport {
 
 struct SynthesisScratch {
   std::vector<float> weights;
+  // Eq. 1's weights above are for this alpha and these curves (BlendCurves::id; 0: none yet): a level held
+  // from tick to tick does not take them again.
+  float weights_alpha = 0.0f;
+  std::uint64_t weights_curves = 0;
   std::vector<glm::vec3> positions;
   std::vector<glm::quat> rotations;
   std::vector<glm::vec3> style;  // centroids of the posture before optimization

@@ -127,3 +127,41 @@ TEST_CASE("the floor stage's kinematics after a toe is pitched up or the body li
   CHECK(pitched_only > 10);  // both ways were taken
   CHECK(lifted > 10);
 }
+
+TEST_CASE("the blend weights kept for a held alpha are taken again when the curves change") {
+  // A scratch keeps Eq. 1's weights while alpha holds; new constants (the demo's panels) or another
+  // synthesizer on the same scratch must not see the old ones.
+  Params params;
+  const MotionSet set = make_builtin_motion_set(params);
+  Synthesizer synth(set, params);
+  const int walk = find_cyclic_clip(set, Role::Walk);
+  REQUIRE(walk >= 0);
+  const Clip& clip = set.clips[static_cast<size_t>(walk)].clip;
+  const Pose& reference = clip.frames.back();
+  SynthesisState state;
+  SynthesisScratch scratch = synth.make_scratch();
+  Pose out = synth.make_pose();
+  const auto step_at_half = [&](const Synthesizer& s, size_t frame) {
+    SynthesisInput in;
+    in.locomotion = &clip.frames[frame];
+    in.reference = &reference;
+    in.alpha = 0.5f;
+    in.dt = 1.0f / clip.fps;
+    s.step(in, state, scratch, out);
+    std::vector<float> expected(static_cast<size_t>(set.skeleton->size()));
+    blend_weights(s.curves(), 0.5f, expected.data());
+    return scratch.weights == expected;
+  };
+  CHECK(step_at_half(synth, 0));
+  CHECK(step_at_half(synth, 1));
+  const std::vector<float> before = scratch.weights;
+  params.blend.C_upper *= 3.0f;
+  synth.set_params(params);
+  CHECK(step_at_half(synth, 2));
+  CHECK(scratch.weights != before);
+  Params linear = params;
+  linear.blend.method = "linear";
+  const Synthesizer other(set, linear);
+  CHECK(step_at_half(other, 3));
+  CHECK(scratch.weights[1] == 0.5f);
+}
