@@ -19,6 +19,7 @@
 #include "engine/synthesis/preparation_run.h"
 #include "engine/synthesis/synthesizer.h"
 #include "engine/util/error.h"
+#include "engine/world/crowd.h"
 #include "engine/world/floor.h"
 #include "engine/world/frame_workers.h"
 #include "engine/world/policy_cache.h"
@@ -159,33 +160,37 @@ CrowdBenchmark benchmark_crowd(const Scenario& scenario, std::shared_ptr<const W
     // Unattended but always synthesizing: no launches (a target clip plays recorded frames, no synthesis).
     worlds.back()->set_auto(false);
     worlds.back()->set_stage_timing(false);  // as a crowd's worlds: no clock reads per character,
-    worlds.back()->set_alpha_history(false);  // and no alpha history
+    worlds.back()->set_alpha_history(false);  // and no alpha history,
+    // and their decisions spread over ticks as a crowd's are.
+    worlds.back()->hold_decisions(k % Crowd::kDecisionPhases);
   }
   const double rss_after = resident_memory_mb();
 
   FrameWorkers workers(threads);
   std::vector<long> synthesized(static_cast<size_t>(threads), 0), balanced(static_cast<size_t>(threads), 0);
-  auto step_block = [&](int block, bool count) {
-    size_t lo = 0, hi = 0;
-    FrameWorkers::block_range(worlds.size(), block, threads, lo, hi);
-    for (size_t i = lo; i < hi; ++i) {
+  auto step_block = [&](size_t lo, size_t hi, int block, bool count) {
+    long run_synthesized = 0, run_balanced = 0;  // summed here, so the threads' counters (neighbours in
+    for (size_t i = lo; i < hi; ++i) {           // memory) are written once per run, not per world
       worlds[i]->step();
       if (count)
         for (const WorldCharacter& c : worlds[i]->characters()) {
-          synthesized[static_cast<size_t>(block)] += !c.in_target;
-          balanced[static_cast<size_t>(block)] += !c.in_target && c.report.balanced;
+          run_synthesized += !c.in_target;
+          run_balanced += !c.in_target && c.report.balanced;
         }
     }
+    synthesized[static_cast<size_t>(block)] += run_synthesized;
+    balanced[static_cast<size_t>(block)] += run_balanced;
   };
-  const std::function<void(int)> step_uncounted = [&](int b) { step_block(b, false); };
-  const std::function<void(int)> step_counted = [&](int b) { step_block(b, true); };
-  for (int f = 0; f < warmup; ++f) workers.run(step_uncounted);
+  const std::function<void(size_t, size_t, int)> step_uncounted = [&](size_t lo, size_t hi, int b) { step_block(lo, hi, b, false); };
+  const std::function<void(size_t, size_t, int)> step_counted = [&](size_t lo, size_t hi, int b) { step_block(lo, hi, b, true); };
+  const size_t chunk = FrameWorkers::chunk_for(worlds.size(), threads);
+  for (int f = 0; f < warmup; ++f) workers.run_chunks(worlds.size(), chunk, step_uncounted);
   std::vector<double> frame_ms;
   frame_ms.reserve(static_cast<size_t>(std::max(frames, 0)));
   const double cpu0 = cpu_ms(CLOCK_PROCESS_CPUTIME_ID);
   for (int f = 0; f < frames; ++f) {
     const auto t0 = Clock::now();
-    workers.run(step_counted);
+    workers.run_chunks(worlds.size(), chunk, step_counted);
     frame_ms.push_back(ms_since(t0));
   }
   const double total = std::accumulate(frame_ms.begin(), frame_ms.end(), 0.0);

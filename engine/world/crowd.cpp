@@ -46,9 +46,7 @@ Crowd::Crowd(const Scenario& lane, std::shared_ptr<const WorldAssets> assets, co
   done_for_.assign(static_cast<size_t>(n), 0.0f);
   for (int i = 0; i < n; ++i) random_.emplace_back(options.seed * 0x9E3779B97F4A7C15ull + static_cast<std::uint64_t>(i));
   for (int i = 0; i < n; ++i) worlds_.push_back(make_lane(i));
-  step_block_ = [this](int block) {
-    size_t first = 0, last = 0;
-    FrameWorkers::block_range(worlds_.size(), block, workers_.blocks(), first, last);
+  step_lanes_ = [this](size_t first, size_t last, int) {
     for (size_t i = first; i < last; ++i) worlds_[i]->step();
   };
 }
@@ -70,13 +68,14 @@ std::unique_ptr<World> Crowd::make_lane(int i) {
   world->set_auto(true);
   world->set_stage_timing(false);
   world->set_alpha_history(false);
+  world->hold_decisions(i % kDecisionPhases);
   started_[static_cast<size_t>(i)] = time_;
   done_for_[static_cast<size_t>(i)] = 0.0f;
   return world;
 }
 
 void Crowd::step() {
-  workers_.run(step_block_);
+  workers_.run_chunks(worlds_.size(), FrameWorkers::chunk_for(worlds_.size(), workers_.blocks()), step_lanes_);
   const float dt = assets_->params.runtime.fixed_dt;
   time_ += dt;
   for (int i = 0; i < lanes(); ++i) {

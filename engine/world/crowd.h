@@ -32,6 +32,9 @@ class Crowd {
   static constexpr float kLaneRest = 1.0f;      // s a lane stays done before it starts over
   static constexpr float kLaneTimeout = 45.0f;  // s after which a lane starts over in any case
   static constexpr float kLaneMargin = 1.5f;    // m between the contents of neighbouring lanes
+  // Lane i takes its first decision (i mod kDecisionPhases) ticks late (World::hold_decisions), so the
+  // lanes' decisions, which come one action apart, are spread over that many ticks instead of one.
+  static constexpr int kDecisionPhases = 16;
 
   // Throws InputError for a scenario without a user character or lanes < 1.
   Crowd(const Scenario& lane, std::shared_ptr<const WorldAssets> assets, const CrowdOptions& options);
@@ -60,7 +63,7 @@ class Crowd {
   std::vector<std::mt19937_64> random_;
   glm::vec2 low_{0.0f}, high_{0.0f};
   FrameWorkers workers_;
-  std::function<void(int)> step_block_;
+  std::function<void(size_t, size_t, int)> step_lanes_;
   int restarts_ = 0;
   float time_ = 0.0f;
 };

@@ -1,8 +1,10 @@
 #include "engine/world/frame_workers.h"
 
+#include <algorithm>
+
 namespace prep {
 
-FrameWorkers::FrameWorkers(int blocks) {
+FrameWorkers::FrameWorkers(int blocks) : take_chunks_([this](int block) { take_chunks(block); }) {
   for (int b = 1; b < blocks; ++b) threads_.emplace_back([this, b] { loop(b); });
 }
 
@@ -49,9 +51,21 @@ void FrameWorkers::loop(int block) {
   }
 }
 
-void FrameWorkers::block_range(size_t count, int block, int blocks, size_t& first, size_t& last) {
-  first = count * static_cast<size_t>(block) / static_cast<size_t>(blocks);
-  last = count * static_cast<size_t>(block + 1) / static_cast<size_t>(blocks);
+void FrameWorkers::run_chunks(size_t count, size_t chunk, const std::function<void(size_t, size_t, int)>& work) {
+  chunk_count_ = count;
+  chunk_size_ = chunk > 0 ? chunk : 1;
+  chunk_work_ = &work;
+  next_item_.store(0, std::memory_order_relaxed);
+  run(take_chunks_);  // the helpers see these fields after run()'s lock, which orders them
+  chunk_work_ = nullptr;
+}
+
+void FrameWorkers::take_chunks(int block) {
+  for (;;) {
+    const size_t first = next_item_.fetch_add(chunk_size_, std::memory_order_relaxed);
+    if (first >= chunk_count_) return;
+    (*chunk_work_)(first, std::min(first + chunk_size_, chunk_count_), block);
+  }
 }
 
 }  // namespace prep

@@ -4,6 +4,8 @@
 // per frame. The crowd benchmark and the crowd demo step their worlds through it.
 #pragma once
 
+#include <algorithm>
+#include <atomic>
 #include <condition_variable>
 #include <cstdint>
 #include <functional>
@@ -24,12 +26,19 @@ class FrameWorkers {
   // Returns when job(0) .. job(blocks() - 1) have all returned. `job` must outlive the call.
   void run(const std::function<void(int)>& job);
 
-  // The half-open range [first, last) of `count` items that block `block` of `blocks` takes: contiguous
-  // blocks, sizes differing by one at most.
-  static void block_range(size_t count, int block, int blocks, size_t& first, size_t& last);
+  // work(first, last, block) over items [0, count) in runs of `chunk`, each run taken by whichever thread
+  // is free next. With fixed halves a frame waits for the slower half: one whose core the system lent
+  // elsewhere for a while, or whose items had more to do that frame. `work` must outlive the call.
+  void run_chunks(size_t count, size_t chunk, const std::function<void(size_t, size_t, int)>& work);
+  // A run length for `count` items over `blocks` threads: about 32 runs per thread, so the last runs to
+  // be taken are short next to a frame, while taking one stays rare.
+  static size_t chunk_for(size_t count, int blocks) {
+    return std::max<size_t>(1, count / (32 * static_cast<size_t>(std::max(1, blocks))));
+  }
 
  private:
   void loop(int block);
+  void take_chunks(int block);
 
   std::vector<std::thread> threads_;
   std::mutex mutex_;
@@ -38,6 +47,11 @@ class FrameWorkers {
   int pending_ = 0;
   std::uint64_t generation_ = 0;
   bool stop_ = false;
+  // run_chunks' frame: the next item not yet taken, and what to do with a run of them.
+  std::atomic<size_t> next_item_{0};
+  size_t chunk_count_ = 0, chunk_size_ = 1;
+  const std::function<void(size_t, size_t, int)>* chunk_work_ = nullptr;
+  std::function<void(int)> take_chunks_;
 };
 
 }  // namespace prep

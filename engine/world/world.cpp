@@ -181,6 +181,7 @@ void World::step() {
     o.position.z += o.velocity.y * dt;
   }
   for (int i = 0; i < static_cast<int>(characters_.size()); ++i) step_character(i);
+  if (decisions_held_ > 0) --decisions_held_;
   keep_apart();
   keep_bodies_apart();
   for (int i = 0; i < static_cast<int>(characters_.size()); ++i) keep_clear_of_obstacles(i);
@@ -205,7 +206,7 @@ void World::control(int index) {
   // A goal just reached is stopped at now, not at the end of the action playing (up to a gait cycle on).
   if (c.control == Control::User && c.reached_goal && rt.stream.node() != assets_->idle_node)
     rt.next_decision = std::min(rt.next_decision, time_);
-  if (time_ >= rt.next_decision && !ctl.arrived()) {
+  if (decisions_held_ == 0 && time_ >= rt.next_decision && !ctl.arrived()) {
     ControlInput in;
     in.position = c.position;
     in.heading = c.heading;

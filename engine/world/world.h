@@ -75,6 +75,7 @@
 //   steering; reaching the scenario's goal is still judged on the scenario's goal.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <chrono>
@@ -396,6 +397,11 @@ class World {
     keep_alpha_history_ = on;
     if (!on) alpha_history_ = {};
   }
+  // The next `ticks` steps take no decision (the characters play on what they play). The worlds of a
+  // crowd, started on one tick, take their decisions on the same ticks ever after (the actions last
+  // alike): a crowd of 20,000 took 13,000 decisions and 4,000 motion switches on one frame, 13 ms over its
+  // neighbours. A crowd holds its worlds' first decisions back by a few ticks each instead.
+  void hold_decisions(int ticks) { decisions_held_ = std::max(decisions_held_, ticks); }
 
   WorldScene scene() const;
 
@@ -462,6 +468,7 @@ class World {
   std::vector<WorldObject> objects_;
   std::vector<std::vector<ObjectSolid>> solids_;  // per object, in its own frame (object_solids.h)
   std::unique_ptr<BodyVolumes> volumes_;           // the bodies' capsules (keep_clear_of_obstacles)
+  int decisions_held_ = 0;  // steps left without decisions (hold_decisions)
   std::vector<glm::vec2> shove_, body_low_, body_high_;  // keep_apart's and keep_bodies_apart's scratch
   std::vector<char> body_placed_;
   std::vector<std::unique_ptr<Runtime>> runtime_;

@@ -119,3 +119,22 @@ TEST_CASE("crowd: no lanes, or a lane without a user, is refused by name") {
   no_user.characters.clear();
   CHECK_THROWS_WITH_AS(Crowd(no_user, s.assets, options_with(3, 1)), doctest::Contains("stadium.json"), InputError);
 }
+
+TEST_CASE("crowd: the lanes' first decisions are spread over kDecisionPhases ticks") {
+  // A world whose decisions are delayed plays on without one; the crowd's lanes take their first ones on
+  // kDecisionPhases different ticks, one after the other.
+  const Stadium s;
+  Crowd crowd(s.lane, s.assets, options_with(2 * Crowd::kDecisionPhases, 1));
+  std::vector<int> first_decision(static_cast<size_t>(crowd.lanes()), -1);
+  for (int tick = 0; tick < Crowd::kDecisionPhases + 2; ++tick) {
+    crowd.step();
+    for (int i = 0; i < crowd.lanes(); ++i) {
+      const WorldCharacter& user = crowd.lane(i).characters()[static_cast<size_t>(crowd.lane(i).user())];
+      if (first_decision[static_cast<size_t>(i)] < 0 && user.motion >= 0) first_decision[static_cast<size_t>(i)] = tick;
+    }
+  }
+  for (int i = 0; i < crowd.lanes(); ++i) {
+    CAPTURE(i);
+    CHECK(first_decision[static_cast<size_t>(i)] == i % Crowd::kDecisionPhases);
+  }
+}
