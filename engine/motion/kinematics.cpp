@@ -1,5 +1,7 @@
 #include "engine/motion/kinematics.h"
 
+#include "engine/motion/quaternion_ops.h"
+
 namespace prep {
 
 void forward_kinematics(const Skeleton& skeleton, const Pose& pose, std::vector<glm::vec3>& world_positions,
@@ -23,7 +25,7 @@ void forward_kinematics(const Skeleton& skeleton, const Pose& pose, std::vector<
 glm::vec3 end_site_position(const Skeleton& skeleton, int joint, const std::vector<glm::vec3>& world_positions,
                             const std::vector<glm::quat>& world_rotations) {
   const size_t j = static_cast<size_t>(joint);
-  return world_positions[j] + world_rotations[j] * skeleton.joints[j].end_site;
+  return world_positions[j] + quat::rotate(world_rotations[j], skeleton.joints[j].end_site);
 }
 
 }  // namespace prep

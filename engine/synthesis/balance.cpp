@@ -6,6 +6,7 @@
 #include <string>
 
 #include "engine/motion/kinematics.h"
+#include "engine/motion/quaternion_ops.h"
 
 namespace prep {
 namespace {
@@ -17,7 +18,7 @@ inline float smooth_norm(float squared, float e) { return std::sqrt(squared + e 
 inline glm::vec3 distal_point(const Skeleton& skeleton, const BalanceModel::Part& part,
                               const std::vector<glm::vec3>& positions, const std::vector<glm::quat>& rotations) {
   const size_t d = static_cast<size_t>(part.distal);
-  return part.distal_is_end_site ? positions[d] + rotations[d] * skeleton.joints[d].end_site : positions[d];
+  return part.distal_is_end_site ? positions[d] + quat::rotate(rotations[d], skeleton.joints[d].end_site) : positions[d];
 }
 
 }  // namespace
@@ -189,7 +190,7 @@ void balance_gradient(const Skeleton& skeleton, const BalanceModel& model, const
   // One backward pass (children come after their parents in the joint order).
   for (size_t j = 0; j < n; ++j) {
     const glm::vec3 ge = s.end_point_gradient[j];
-    const glm::vec3 end = s.positions[j] + s.rotations[j] * skeleton.joints[j].end_site;
+    const glm::vec3 end = s.positions[j] + quat::rotate(s.rotations[j], skeleton.joints[j].end_site);
     s.subtree_force[j] = ge;
     s.subtree_torque[j] = glm::cross(end, ge);
     s.subtree_mass[j] = model.end_mass[j];
@@ -325,7 +326,7 @@ void moved_gradient(const Skeleton& skeleton, const BalanceModel& model, const B
     const glm::vec3 x = s.positions[j];
     if (model.end_point[j]) {
       const glm::vec3 ge = s.end_point_gradient[j];
-      const glm::vec3 end = x + s.rotations[j] * skeleton.joints[j].end_site;
+      const glm::vec3 end = x + quat::rotate(s.rotations[j], skeleton.joints[j].end_site);
       s.subtree_force[j] += ge;
       s.subtree_torque[j] += glm::cross(end, ge);
       s.subtree_mass[j] += model.end_mass[j];
@@ -347,7 +348,7 @@ void moved_gradient(const Skeleton& skeleton, const BalanceModel& model, const B
 // Rotation by about the rotation vector v for the small v of a descent step: (1, v/2) normalized (first
 // order in |v|; the line search judges the step by the true cost, so any such retraction serves, and this
 // one needs no trigonometry).
-inline glm::quat small_rotation(glm::vec3 v) { return glm::normalize(glm::quat(1.0f, 0.5f * v.x, 0.5f * v.y, 0.5f * v.z)); }
+inline glm::quat small_rotation(glm::vec3 v) { return quat::normalize(glm::quat(1.0f, 0.5f * v.x, 0.5f * v.y, 0.5f * v.z)); }
 
 // The largest first-order speed of a moved part's centroid per unit step along -joint_gradient: a forward
 // pass carries each joint frame's angular velocity (the sum of the steps of the optimized joints above it)
@@ -370,7 +371,7 @@ float step_motion(const Skeleton& skeleton, const BalanceModel& model, BalanceSc
     const size_t jj = static_cast<size_t>(j);
     if (!model.is_moved[jj]) return glm::vec3(0.0f);
     if (!end_site) return s.linear[jj];
-    return s.linear[jj] + glm::cross(s.angular[jj], s.rotations[jj] * skeleton.joints[jj].end_site);
+    return s.linear[jj] + glm::cross(s.angular[jj], quat::rotate(s.rotations[jj], skeleton.joints[jj].end_site));
   };
   float largest2 = 0.0f;
   for (int i : model.moved_parts) {
@@ -451,10 +452,10 @@ BalanceResult optimize_balance(const Skeleton& skeleton, const BalanceModel& mod
     for (int attempt = 0; attempt < 3; ++attempt) {
       if (attempt > 0) {  // half of the rotation (same axis, half the angle): normalize(1 + q) for q.w >= 0
         for (size_t k = 0; k < k_count; ++k) {
-          s.offset[k] = glm::normalize(glm::quat(s.offset[k].w + 1.0f, s.offset[k].x, s.offset[k].y, s.offset[k].z));
+          s.offset[k] = quat::normalize(glm::quat(s.offset[k].w + 1.0f, s.offset[k].x, s.offset[k].y, s.offset[k].z));
         }
       }
-      for (size_t k = 0; k < k_count; ++k) s.trial_local[k] = glm::normalize(s.offset[k] * s.base[k]);
+      for (size_t k = 0; k < k_count; ++k) s.trial_local[k] = quat::normalize(quat::mul(s.offset[k], s.base[k]));
       moved_kinematics(skeleton, model, pose, s.trial_local.data(), s.trial_positions, s.trial_rotations);
       moved_centroids(skeleton, model, s.trial_positions, s.trial_rotations, s.trial_centroids.data());
       const BalanceCost c = moved_cost(model, params, targets, s.trial_centroids.data(), fixed, fixed_com);
@@ -508,8 +509,8 @@ BalanceResult optimize_balance(const Skeleton& skeleton, const BalanceModel& mod
         const size_t j = static_cast<size_t>(model.optimized[k]);
         const glm::quat& parent_world = s.rotations[static_cast<size_t>(skeleton.joints[j].parent)];
         // A world-frame rotation vector at joint j, expressed in its parent's frame, premultiplies its local rotation.
-        const glm::vec3 delta = glm::conjugate(parent_world) * (-step * s.joint_gradient[j]);
-        s.trial_local[k] = glm::normalize(small_rotation(delta) * s.local[k]);
+        const glm::vec3 delta = quat::rotate(glm::conjugate(parent_world), -step * s.joint_gradient[j]);
+        s.trial_local[k] = quat::normalize(quat::mul(small_rotation(delta), s.local[k]));
       }
       moved_kinematics(skeleton, model, pose, s.trial_local.data(), s.trial_positions, s.trial_rotations);
       moved_centroids(skeleton, model, s.trial_positions, s.trial_rotations, s.trial_centroids.data());
@@ -540,7 +541,7 @@ BalanceResult optimize_balance(const Skeleton& skeleton, const BalanceModel& mod
   for (size_t k = 0; k < k_count; ++k) pose.rotations[static_cast<size_t>(model.optimized[k])] = s.local[k];
   if (memory) {
     for (size_t k = 0; k < k_count; ++k) {
-      const glm::quat q = glm::normalize(s.local[k] * glm::conjugate(s.base[k]));
+      const glm::quat q = quat::normalize(quat::mul(s.local[k], glm::conjugate(s.base[k])));
       memory->offset[k] = q.w < 0.0f ? -q : q;
     }
     memory->valid = true;

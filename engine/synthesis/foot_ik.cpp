@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "engine/motion/kinematics.h"
+#include "engine/motion/quaternion_ops.h"
 
 namespace prep {
 namespace {
@@ -20,7 +21,7 @@ glm::quat rotation_between(glm::vec3 from, glm::vec3 to) {
     const glm::vec3 half_turn = glm::normalize(glm::cross(f, std::abs(f.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0)));
     return glm::quat(0.0f, half_turn.x, half_turn.y, half_turn.z);
   }
-  return glm::normalize(glm::quat(1.0f + d, axis.x, axis.y, axis.z));
+  return quat::normalize(glm::quat(1.0f + d, axis.x, axis.y, axis.z));
 }
 
 // An angle in [0, pi] by its cosine and sine.
@@ -40,7 +41,7 @@ glm::quat turn_between(Angle from, Angle to, glm::vec3 axis) {
   const float c = to.cos * from.cos + to.sin * from.sin;
   const float s = to.sin * from.cos - to.cos * from.sin;
   if (1.0f + c < 1e-7f) return glm::quat(0.0f, axis.x, axis.y, axis.z);  // a half turn
-  return glm::normalize(glm::quat(1.0f + c, s * axis.x, s * axis.y, s * axis.z));
+  return quat::normalize(glm::quat(1.0f + c, s * axis.x, s * axis.y, s * axis.z));
 }
 
 // m: how far above the floor an ankle joint is kept, so that its toe can be pitched up to the floor.
@@ -97,27 +98,27 @@ glm::vec3 solve_leg(const Skeleton& skeleton, const LegChain& leg, const IkParam
   const glm::quat r0 = turn_between(ac_ab_0, ac_ab_1, axis);  // at the hip, in world
   const glm::quat r1 = turn_between(ba_bc_0, ba_bc_1, axis);  // at the knee, in world
   // Then swing the whole leg about the hip so that the (new) ankle direction points at the target.
-  const glm::quat r01 = r0 * r1;
-  const glm::vec3 bent = r0 * (b - a) + r01 * (c - b);  // hip to ankle, the knee bent
+  const glm::quat r01 = quat::mul(r0, r1);
+  const glm::vec3 bent = quat::rotate(r0, b - a) + quat::rotate(r01, c - b);  // hip to ankle, the knee bent
   const glm::quat r2 = rotation_between(bent, to_target);
 
   // The new world rotations, then the local ones. The world rotations are unit quaternions (normalized
   // here), so their inverses are their conjugates.
   const int hip_parent = skeleton.joints[hip].parent;
   const glm::quat parent_world = hip_parent >= 0 ? wr[static_cast<size_t>(hip_parent)] : glm::quat(1, 0, 0, 0);
-  const glm::quat r20 = r2 * r0;
-  const glm::quat hip_world = glm::normalize(r20 * wr[hip]);
-  const glm::quat knee_world = glm::normalize(r20 * r1 * wr[knee]);
-  pose.rotations[hip] = glm::normalize(glm::conjugate(parent_world) * hip_world);
-  pose.rotations[knee] = glm::normalize(glm::conjugate(hip_world) * knee_world);
+  const glm::quat r20 = quat::mul(r2, r0);
+  const glm::quat hip_world = quat::normalize(quat::mul(r20, wr[hip]));
+  const glm::quat knee_world = quat::normalize(quat::mul(quat::mul(r20, r1), wr[knee]));
+  pose.rotations[hip] = quat::normalize(quat::mul(glm::conjugate(parent_world), hip_world));
+  pose.rotations[knee] = quat::normalize(quat::mul(glm::conjugate(hip_world), knee_world));
   // The shin may not be the ankle's direct parent in every skeleton: compose the joints between them.
   glm::quat between(1, 0, 0, 0);
   for (int j = skeleton.joints[ankle].parent; j != static_cast<int>(knee); j = skeleton.joints[static_cast<size_t>(j)].parent) {
-    between = pose.rotations[static_cast<size_t>(j)] * between;
+    between = quat::mul(pose.rotations[static_cast<size_t>(j)], between);
   }
-  const glm::quat above_ankle = knee_world * between;
-  pose.rotations[ankle] = glm::normalize(glm::inverse(above_ankle) * foot_world);
-  return a + r2 * bent;
+  const glm::quat above_ankle = quat::mul(knee_world, between);
+  pose.rotations[ankle] = quat::normalize(quat::mul(glm::inverse(above_ankle), foot_world));
+  return a + quat::rotate(r2, bent);
 }
 
 FrameContacts select_pinned_points(const FrameContacts& contacts, const std::array<float, 2>& heel_speed,
@@ -135,7 +136,7 @@ FrameContacts select_pinned_points(const FrameContacts& contacts, const std::arr
 void apply_foot_ik(const Skeleton& skeleton, const BodyMap& body, const IkParams& params,
                    const FrameContacts& pinned, float dt, Pose& pose, const std::vector<glm::vec3>& wp,
                    const std::vector<glm::quat>& wr, FootPlants& plants, float& root_drop) {
-  const glm::vec3 forward = pose.rotations[static_cast<size_t>(body.root)] * glm::vec3(0.0f, 0.0f, 1.0f);
+  const glm::vec3 forward = quat::rotate(pose.rotations[static_cast<size_t>(body.root)], glm::vec3(0.0f, 0.0f, 1.0f));
   std::array<glm::vec3, 2> heel{}, foot_vector{}, target{};
   std::array<glm::quat, 2> foot_world{};
   float required_drop = 0.0f;
@@ -154,7 +155,7 @@ void apply_foot_ik(const Skeleton& skeleton, const BodyMap& body, const IkParams
     if (plant.toe_held) {
       const Joint& toe = skeleton.joints[static_cast<size_t>(leg.toe)];
       pose.rotations[static_cast<size_t>(leg.toe)] = plant.toe_local;
-      heel_to_toe = wr[static_cast<size_t>(leg.ankle)] * (toe.offset + plant.toe_local * toe.end_site);
+      heel_to_toe = quat::rotate(wr[static_cast<size_t>(leg.ankle)], toe.offset + quat::rotate(plant.toe_local, toe.end_site));
     }
     foot_world[side] = wr[static_cast<size_t>(leg.ankle)];
     foot_vector[side] = heel_to_toe;
@@ -163,8 +164,8 @@ void apply_foot_ik(const Skeleton& skeleton, const BodyMap& body, const IkParams
       if (plant.toe_planted && glm::length(plant.toe_anchor - plant.heel_anchor) > 1e-4f) {
         // Flat foot: turn the foot (smallest rotation) so that its toe tip points at its anchor too.
         const glm::quat align = rotation_between(heel_to_toe, plant.toe_anchor - plant.heel_anchor);
-        foot_world[side] = glm::normalize(align * foot_world[side]);
-        foot_vector[side] = align * heel_to_toe;
+        foot_world[side] = quat::normalize(quat::mul(align, foot_world[side]));
+        foot_vector[side] = quat::rotate(align, heel_to_toe);
       }
     } else if (plant.toe_planted) {
       target[side] = plant.toe_anchor - heel_to_toe;  // heel off: the foot rolls about its planted toe
