@@ -117,7 +117,8 @@ void run(const Options& o) {
                           {"us_per_character_frame", 1000.0 * c.ms_per_frame / c.characters},
                           {"synthesized_fraction", c.synthesized_fraction},
                           {"balanced_fraction", c.balanced_fraction},
-                          {"kb_per_character", c.kb_per_character}});
+                          {"kb_per_character", c.kb_per_character},
+                          {"entry_fill_ms", c.entry_fill_ms}});
     if (n == kCrowdTargetCharacters) crowd_target_ms = c.ms_per_frame, crowd_target_cpu_ms = c.cpu_ms_per_frame;
     say(std::to_string(c.ms_per_frame) + " ms/frame\n");
   }

@@ -239,6 +239,13 @@ struct MotionGraph::EntryMemo {
   std::unique_ptr<std::atomic<int>[]> best;  // [(first[from] + from_frame) * nodes + to]
 };
 
+bool MotionGraph::entry_frame_known(int from, int from_frame, int to) const {
+  const int frames = set_->clips.at(static_cast<size_t>(from)).clip.frame_count();
+  if (!entry_memo_ || from_frame < 0 || from_frame >= frames || to < 0 || static_cast<size_t>(to) >= entry_memo_->nodes) return false;
+  return entry_memo_->best[(entry_memo_->first[static_cast<size_t>(from)] + static_cast<size_t>(from_frame)) * entry_memo_->nodes +
+                           static_cast<size_t>(to)].load(std::memory_order_relaxed) >= 0;
+}
+
 int MotionGraph::best_entry_frame(int from, int from_frame, int to) const {
   const MotionClip& mc = set_->clips.at(static_cast<size_t>(to));
   const int frames = set_->clips.at(static_cast<size_t>(from)).clip.frame_count();
@@ -261,6 +268,17 @@ int MotionGraph::best_entry_frame(int from, int from_frame, int to) const {
   }
   if (slot) slot->store(best, std::memory_order_relaxed);
   return best;
+}
+
+void MotionGraph::fill_entry_frames(const std::vector<int>& from, const std::vector<int>& to, int part, int parts) const {
+  int row = 0;
+  for (int node : from) {
+    const int frames = set_->clips.at(static_cast<size_t>(node)).clip.frame_count();
+    for (int frame = 0; frame < frames; ++frame, ++row) {
+      if (row % parts != part) continue;
+      for (int target : to) best_entry_frame(node, frame, target);
+    }
+  }
 }
 
 MotionGraph MotionGraph::build(const MotionSet& set, const GraphParams& params) {

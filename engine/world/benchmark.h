@@ -71,6 +71,7 @@ struct CrowdBenchmark {
   double synthesized_fraction = 0;    // character-frames that went through Synthesizer::step
   double balanced_fraction = 0;       // ... in which the balance optimizer ran (alpha >= 0.3)
   double kb_per_character = 0;        // resident memory added per character when the crowd was built
+  double entry_fill_ms = 0;           // fill_entry_frames before the first frame (once per graph: 0 after)
 };
 // N worlds made from `scenario` (one user character; its objects kept), each character placed at a
 // random start (seeded) within 2 m of the scenario's start, facing a random direction, its first object

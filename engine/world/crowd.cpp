@@ -45,10 +45,19 @@ Crowd::Crowd(const Scenario& lane, std::shared_ptr<const WorldAssets> assets, co
   started_.assign(static_cast<size_t>(n), 0.0f);
   done_for_.assign(static_cast<size_t>(n), 0.0f);
   for (int i = 0; i < n; ++i) random_.emplace_back(options.seed * 0x9E3779B97F4A7C15ull + static_cast<std::uint64_t>(i));
+  fill_entry_frames(*assets_, workers_);
   for (int i = 0; i < n; ++i) worlds_.push_back(make_lane(i));
   step_lanes_ = [this](size_t first, size_t last, int) {
     for (size_t i = first; i < last; ++i) worlds_[i]->step();
   };
+}
+
+void fill_entry_frames(const WorldAssets& assets, FrameWorkers& workers) {
+  std::vector<int> from(assets.graph->nodes().size());
+  for (size_t n = 0; n < from.size(); ++n) from[n] = static_cast<int>(n);
+  const MotionGraph& graph = *assets.graph;
+  const int parts = workers.blocks();
+  workers.run([&](int part) { graph.fill_entry_frames(from, assets.core_nodes, part, parts); });
 }
 
 std::unique_ptr<World> Crowd::make_lane(int i) {

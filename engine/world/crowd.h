@@ -27,6 +27,11 @@ struct CrowdOptions {
   float heading_jitter = 0.3f;  // radians: ... and turns up to this far
 };
 
+// The motion graph's phase-matched entries (MotionGraph::best_entry_frame) from every clip frame into
+// every core motion, found ahead on the workers' threads: a crowd meets thousands of them in its first
+// seconds, and each costs 0.2 ms (built-in library) on the frame it is first met.
+void fill_entry_frames(const WorldAssets& assets, FrameWorkers& workers);
+
 class Crowd {
  public:
   static constexpr float kLaneRest = 1.0f;      // s a lane stays done before it starts over

@@ -56,3 +56,33 @@ TEST_CASE("best_entry_frame equals the full scan, the first time and from the ta
     CHECK(copy.best_entry_frame(queries[k].from, queries[k].frame, queries[k].to) == queries[k].expected);
   }
 }
+
+TEST_CASE("fill_entry_frames: two parts fill every row ahead, with what the full scan gives") {
+  const MotionSet set = make_builtin_motion_set(Params{});
+  const MotionGraph g = MotionGraph::build(set, Params{}.graph);
+  std::vector<int> core, all;
+  for (const GraphNode& n : g.nodes()) {
+    all.push_back(n.clip);
+    if (n.core) core.push_back(n.clip);
+  }
+  std::thread other([&] { g.fill_entry_frames(all, core, 1, 2); });
+  g.fill_entry_frames(all, core, 0, 2);
+  other.join();
+  // Every answer is in the table before anyone asks, in rows of both parts.
+  int known = 0, unknown = 0;
+  for (int from : all)
+    for (int frame = 0; frame < set.clips[static_cast<size_t>(from)].clip.frame_count(); ++frame)
+      for (int to : core) (g.entry_frame_known(from, frame, to) ? known : unknown)++;
+  CHECK(known > 1000);
+  CHECK(unknown == 0);
+  const MotionGraph fresh = MotionGraph::build(set, Params{}.graph);  // its own table: nothing known yet
+  CHECK_FALSE(fresh.entry_frame_known(all.back(), 0, core.front()));
+  // And they are the full scan's, sampled across rows both parts filled.
+  for (int from : all)
+    for (int frame = 0; frame < set.clips[static_cast<size_t>(from)].clip.frame_count(); frame += 37)
+      for (int to : core) {
+        CAPTURE(from);
+        CAPTURE(frame);
+        CHECK(g.best_entry_frame(from, frame, to) == scan(g, from, frame, to));
+      }
+}
