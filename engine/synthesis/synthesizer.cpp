@@ -27,6 +27,24 @@ void chain_kinematics(const Skeleton& skeleton, const std::vector<int>& joints, 
   }
 }
 
+// The balance optimizer's working buffers, one per thread and skeleton size (BalanceScratch keeps nothing
+// from one call to the next). A crowd's thousands of characters share their thread's, which stays in its
+// cache, instead of each carrying 6 KB of its own (built-in body) through it every frame.
+BalanceScratch& thread_balance_scratch(int joints, int parts) {
+  struct Sized {
+    int joints = 0, parts = 0;
+    BalanceScratch scratch;
+  };
+  thread_local std::vector<std::unique_ptr<Sized>> sized;  // one per skeleton in use: a few at most
+  for (const auto& s : sized)
+    if (s->joints == joints && s->parts == parts) return s->scratch;
+  sized.push_back(std::make_unique<Sized>());
+  sized.back()->joints = joints;
+  sized.back()->parts = parts;
+  sized.back()->scratch.resize(joints, parts);
+  return sized.back()->scratch;
+}
+
 }  // namespace
 
 Synthesizer::Synthesizer(std::shared_ptr<const Skeleton> skeleton, BodyMap body, const MassModel& mass,
@@ -78,7 +96,6 @@ SynthesisScratch Synthesizer::make_scratch() const {
   s.positions.resize(n);
   s.rotations.resize(n);
   s.style.resize(balance_model_.parts.size());
-  s.balance.resize(skeleton_->size(), static_cast<int>(balance_model_.parts.size()));
   s.support.hull.reserve(16);
   return s;
 }
@@ -161,14 +178,15 @@ void Synthesizer::stage_balance(const SynthesisInput& in, SynthesisState& state,
   BalanceResult result;
   const glm::vec3* final_centroids = s.style.data();
   if (optimize) {
-    s.balance.positions.swap(s.positions);  // the IK stage's forward kinematics of `out` (same sizes)
-    s.balance.rotations.swap(s.rotations);
-    result = optimize_balance(*skeleton_, balance_model_, bp, targets, out, s.balance, &state.correction, in.dt, true);
-    final_centroids = s.balance.centroids.data();
+    BalanceScratch& b = thread_balance_scratch(skeleton_->size(), static_cast<int>(n_parts));
+    b.positions = s.positions;  // the IK stage's forward kinematics of `out` (same sizes: no allocation)
+    b.rotations = s.rotations;
+    result = optimize_balance(*skeleton_, balance_model_, bp, targets, out, b, &state.correction, in.dt, true);
+    final_centroids = b.centroids.data();
     // The optimizer's kinematics are those of the final posture but for the joints it does not read
     // (fingers, eyes): those are brought up to date, and stage_floor needs no pass of its own.
-    s.balance.positions.swap(s.positions);
-    s.balance.rotations.swap(s.rotations);
+    s.positions = b.positions;
+    s.rotations = b.rotations;
     chain_kinematics(*skeleton_, balance_stale_, out, s.positions, s.rotations);
   } else {
     state.correction.valid = false;  // the next optimized frame starts from its blended posture

@@ -90,7 +90,6 @@ struct SynthesisScratch {
   std::vector<glm::vec3> style;  // centroids of the posture before optimization
   FrameContacts pinned{};
   glm::vec3 locomotion_jump{0.0f};  // how far the locomotion stream was moved this frame beyond its displacement
-  BalanceScratch balance;
   SupportPolygon support;
   // `support` is that of the pose the last step() or stage_floor() returned: its feet and contacts are
   // those the balance stage saw (the floor stage changed nothing).

@@ -2,6 +2,7 @@
 
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -164,4 +165,52 @@ TEST_CASE("the blend weights kept for a held alpha are taken again when the curv
   const Synthesizer other(set, linear);
   CHECK(step_at_half(other, 3));
   CHECK(scratch.weights[1] == 0.5f);
+}
+
+TEST_CASE("synthesizers of two skeletons interleaved on one thread give what each gives alone") {
+  // The balance optimizer's buffers belong to the thread (one per skeleton size), not to the character:
+  // a frame of one body between two of another must change nothing.
+  const Params params;
+  const MotionSet builtin = make_builtin_motion_set(params);
+  const MotionSet daz43 = load_motion_set(std::string(PREP_SOURCE_DIR) + "/assets/manifests/daz43.json", params);
+  struct Run {
+    const MotionSet* set;
+    Synthesizer synth;
+    Pose reference;
+    LocomotionLoop loop;
+    SynthesisState state;
+    SynthesisScratch scratch;
+    Pose locomotion, out;
+    std::vector<Pose> frames;
+    Run(const MotionSet& s, const Params& p)
+        : set(&s), synth(s, p), reference(s.clips[static_cast<size_t>(find_cyclic_clip(s, Role::Walk))].clip.frames.front()),
+          loop(s.clips[static_cast<size_t>(find_cyclic_clip(s, Role::Walk))]), scratch(synth.make_scratch()), out(synth.make_pose()) {
+      // The reference: the walk's first frame turned at the waist, so that blending and balance have work.
+      for (glm::quat& q : reference.rotations) q = glm::normalize(glm::angleAxis(0.3f, glm::vec3(1, 0, 0)) * q);
+    }
+    void step(int frame) {
+      SynthesisInput in;
+      loop.next(locomotion, in.contacts);
+      in.locomotion = &locomotion;
+      in.reference = &reference;
+      in.alpha = 0.5f + 0.4f * std::sin(0.1f * static_cast<float>(frame));
+      in.dt = 1.0f / 60.0f;
+      synth.step(in, state, scratch, out);
+      frames.push_back(out);
+    }
+  };
+  Run a_alone(builtin, params), b_alone(daz43, params), a(builtin, params), b(daz43, params);
+  for (int f = 0; f < 60; ++f) a_alone.step(f);
+  for (int f = 0; f < 60; ++f) b_alone.step(f);
+  for (int f = 0; f < 60; ++f) {
+    a.step(f);
+    b.step(f);
+  }
+  for (size_t f = 0; f < 60; ++f) {
+    CAPTURE(f);
+    REQUIRE(a.frames[f].rotations == a_alone.frames[f].rotations);
+    REQUIRE(a.frames[f].root_position == a_alone.frames[f].root_position);
+    REQUIRE(b.frames[f].rotations == b_alone.frames[f].rotations);
+    REQUIRE(b.frames[f].root_position == b_alone.frames[f].root_position);
+  }
 }
