@@ -29,6 +29,19 @@ int joints_the_optimizer_skips(const BalanceModel& model, const Skeleton& skelet
   return skipped;
 }
 
+// The kinematics the synthesizer left in its scratch are a fresh forward-kinematics pass of `pose`, to the bit.
+void require_fresh_kinematics(const Synthesizer& synth, const SynthesisScratch& scratch, const Pose& pose, size_t frame) {
+  std::vector<glm::vec3> positions;
+  std::vector<glm::quat> rotations;
+  forward_kinematics(synth.skeleton(), pose, positions, &rotations);
+  for (size_t j = 0; j < positions.size(); ++j) {
+    CAPTURE(frame);
+    CAPTURE(j);
+    REQUIRE(scratch.positions[j] == positions[j]);
+    REQUIRE(scratch.rotations[j] == rotations[j]);
+  }
+}
+
 // Walks the set's walk toward its first target's T_p at alpha 0.8 (the optimizer runs) and checks that the
 // forward kinematics the synthesizer leaves in its scratch are exactly those of the pose it returns, with
 // and without its own floor stage: the world reads its COM from them.
@@ -48,8 +61,6 @@ void check_kinematics_left_in_scratch(const MotionSet& set, bool keep_toes) {
   SynthesisState state;
   SynthesisScratch scratch = synth.make_scratch();
   Pose locomotion, out = synth.make_pose();
-  std::vector<glm::vec3> positions;
-  std::vector<glm::quat> rotations;
   int balanced = 0;
   for (int frame = 0; frame < 90; ++frame) {
     SynthesisInput in;
@@ -62,13 +73,7 @@ void check_kinematics_left_in_scratch(const MotionSet& set, bool keep_toes) {
     SynthesisReport report;
     synth.step(in, state, scratch, out, &report);
     balanced += report.balanced;
-    forward_kinematics(synth.skeleton(), out, positions, &rotations);
-    for (size_t j = 0; j < positions.size(); ++j) {
-      CAPTURE(frame);
-      CAPTURE(j);
-      REQUIRE(scratch.positions[j] == positions[j]);
-      REQUIRE(scratch.rotations[j] == rotations[j]);
-    }
+    require_fresh_kinematics(synth, scratch, out, static_cast<size_t>(frame));
   }
   CHECK(balanced > 45);  // most frames went through the optimizer
 }
@@ -99,8 +104,6 @@ TEST_CASE("the floor stage's kinematics after a toe is pitched up or the body li
   const Clip& clip = set.clips[static_cast<size_t>(walk)].clip;
   const int ankle = set.body.legs[0].ankle;
   SynthesisScratch scratch = synth.make_scratch();
-  std::vector<glm::vec3> positions;
-  std::vector<glm::quat> rotations;
   int pitched_only = 0, lifted = 0;
   for (size_t f = 0; f < clip.frames.size(); ++f) {
     for (float sink : {0.0f, 0.02f, 0.3f}) {  // as it is, its toes into the floor, the whole body into it
@@ -116,13 +119,7 @@ TEST_CASE("the floor stage's kinematics after a toe is pitched up or the body li
       for (size_t j = 0; j < pose.rotations.size(); ++j) turned = turned || pose.rotations[j] != before.rotations[j];
       pitched_only += turned && pose.root_position.y == root_before;
       lifted += pose.root_position.y != root_before;
-      forward_kinematics(synth.skeleton(), pose, positions, &rotations);
-      for (size_t j = 0; j < positions.size(); ++j) {
-        CAPTURE(f);
-        CAPTURE(j);
-        REQUIRE(scratch.positions[j] == positions[j]);
-        REQUIRE(scratch.rotations[j] == rotations[j]);
-      }
+      require_fresh_kinematics(synth, scratch, pose, f);
     }
   }
   CHECK(pitched_only > 10);  // both ways were taken
