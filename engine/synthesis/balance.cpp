@@ -7,6 +7,7 @@
 
 #include "engine/motion/kinematics.h"
 #include "engine/motion/quaternion_ops.h"
+#include "engine/motion/vector_ops.h"
 
 namespace prep {
 namespace {
@@ -15,10 +16,24 @@ namespace {
 // e.g. the style term at the start of the optimization.
 inline float smooth_norm(float squared, float e) { return std::sqrt(squared + e * e) - e; }
 
-inline glm::vec3 distal_point(const Skeleton& skeleton, const BalanceModel::Part& part,
-                              const std::vector<glm::vec3>& positions, const std::vector<glm::quat>& rotations) {
+// A body part's centroid: c = (1 - f) * proximal + f * distal, computed as p + f (distal - p).
+inline V3 centroid_of(const Skeleton& skeleton, const BalanceModel::Part& part, const std::vector<glm::vec3>& positions,
+                      const std::vector<glm::quat>& rotations) {
   const size_t d = static_cast<size_t>(part.distal);
-  return part.distal_is_end_site ? positions[d] + quat::rotate(rotations[d], skeleton.joints[d].end_site) : positions[d];
+  const V3 p = V3::load(positions[static_cast<size_t>(part.proximal)]);
+  const V3 distal = part.distal_is_end_site
+                        ? V3::load(positions[d]) + rotate(rotations[d], V3::load(skeleton.joints[d].end_site))
+                        : V3::load(positions[d]);
+  return p + part.f * (distal - p);
+}
+
+// Eq. 7's and Eq. 8-9's terms of one part (before the weights and the 1/n).
+inline float style_term(V3 centroid, const glm::vec3& style, float e) {
+  const V3 st = centroid - V3::load(style);
+  return smooth_norm(dot(st, st), e);
+}
+inline V3 acceleration(V3 centroid, const glm::vec3& previous, const glm::vec3& before_previous) {
+  return centroid - 2.0f * V3::load(previous) + V3::load(before_previous);
 }
 
 }  // namespace
@@ -114,17 +129,13 @@ BalanceModel BalanceModel::build(const Skeleton& skeleton, const BodyMap& body, 
 
 void part_centroids(const Skeleton& skeleton, const BalanceModel& model, const std::vector<glm::vec3>& positions,
                     const std::vector<glm::quat>& rotations, glm::vec3* out) {
-  for (size_t i = 0; i < model.parts.size(); ++i) {
-    const BalanceModel::Part& part = model.parts[i];
-    const glm::vec3 p = positions[static_cast<size_t>(part.proximal)];
-    out[i] = p + part.f * (distal_point(skeleton, part, positions, rotations) - p);
-  }
+  for (size_t i = 0; i < model.parts.size(); ++i) centroid_of(skeleton, model.parts[i], positions, rotations).store(out[i]);
 }
 
 glm::vec3 model_center_of_mass(const BalanceModel& model, const glm::vec3* centroids) {
-  glm::vec3 com(0.0f);
-  for (size_t i = 0; i < model.parts.size(); ++i) com += model.parts[i].mass * centroids[i];
-  return com;
+  V3 com = V3::zero();
+  for (size_t i = 0; i < model.parts.size(); ++i) com += model.parts[i].mass * V3::load(centroids[i]);
+  return com.vec();
 }
 
 BalanceCost balance_cost(const BalanceModel& model, const BalanceParams& params, const BalanceTargets& targets,
@@ -138,14 +149,11 @@ BalanceCost balance_cost(const BalanceModel& model, const BalanceParams& params,
   const float d2 = glm::dot(d, d);
   cost.com_distance = std::sqrt(d2);
   cost.balance = smooth_norm(d2, e);  // Eq. 6
-  for (size_t i = 0; i < n; ++i) {
-    const glm::vec3 s = centroids[i] - targets.style[i];
-    cost.style += smooth_norm(glm::dot(s, s), e) * inv_n;  // Eq. 7
-  }
+  for (size_t i = 0; i < n; ++i) cost.style += style_term(V3::load(centroids[i]), targets.style[i], e) * inv_n;  // Eq. 7
   if (targets.previous && targets.before_previous) {
     for (size_t i = 0; i < n; ++i) {
-      const glm::vec3 a = centroids[i] - 2.0f * targets.previous[i] + targets.before_previous[i];
-      cost.smooth += smooth_norm(glm::dot(a, a), e) * inv_n;  // Eq. 8-9
+      const V3 a = acceleration(V3::load(centroids[i]), targets.previous[i], targets.before_previous[i]);
+      cost.smooth += smooth_norm(dot(a, a), e) * inv_n;  // Eq. 8-9
     }
   }
   cost.total = params.w_b * cost.balance + params.w_s * cost.style + params.w_m * cost.smooth;  // Eq. 10
@@ -219,12 +227,12 @@ void balance_gradient(const Skeleton& skeleton, const BalanceModel& model, const
 }
 
 glm::vec3 com_response(const BalanceModel& model, const BalanceScratch& s) {
-  glm::vec3 v(0.0f);
+  V3 v = V3::zero();
   for (int j : model.optimized) {
     const size_t jj = static_cast<size_t>(j);
-    v += glm::cross(-s.joint_gradient[jj], s.subtree_moment[jj]);
+    v += cross(-V3::load(s.joint_gradient[jj]), V3::load(s.subtree_moment[jj]));
   }
-  return v;
+  return v.vec();
 }
 
 namespace {
@@ -246,9 +254,7 @@ void moved_kinematics(const Skeleton& skeleton, const BalanceModel& model, const
 void moved_centroids(const Skeleton& skeleton, const BalanceModel& model, const std::vector<glm::vec3>& positions,
                      const std::vector<glm::quat>& rotations, glm::vec3* out) {
   for (int i : model.moved_parts) {
-    const BalanceModel::Part& part = model.parts[static_cast<size_t>(i)];
-    const glm::vec3 p = positions[static_cast<size_t>(part.proximal)];
-    out[i] = p + part.f * (distal_point(skeleton, part, positions, rotations) - p);
+    centroid_of(skeleton, model.parts[static_cast<size_t>(i)], positions, rotations).store(out[i]);
   }
 }
 
@@ -256,9 +262,9 @@ void moved_centroids(const Skeleton& skeleton, const BalanceModel& model, const 
 // (style, smoothness); the COM takes every part.
 // The COM from the parts that never move (fixed_com, their weighted sum) and the moved parts.
 inline glm::vec3 moved_com(const BalanceModel& model, const glm::vec3& fixed_com, const glm::vec3* centroids) {
-  glm::vec3 com = fixed_com;
-  for (int i : model.moved_parts) com += model.parts[static_cast<size_t>(i)].mass * centroids[static_cast<size_t>(i)];
-  return com;
+  V3 com = V3::load(fixed_com);
+  for (int i : model.moved_parts) com += model.parts[static_cast<size_t>(i)].mass * V3::load(centroids[static_cast<size_t>(i)]);
+  return com.vec();
 }
 
 BalanceCost moved_cost(const BalanceModel& model, const BalanceParams& params, const BalanceTargets& targets,
@@ -276,11 +282,11 @@ BalanceCost moved_cost(const BalanceModel& model, const BalanceParams& params, c
   const bool history = targets.previous && targets.before_previous;
   for (int i : model.moved_parts) {
     const size_t ii = static_cast<size_t>(i);
-    const glm::vec3 st = centroids[ii] - targets.style[ii];
-    cost.style += smooth_norm(glm::dot(st, st), e) * inv_n;  // Eq. 7
+    const V3 centroid = V3::load(centroids[ii]);
+    cost.style += style_term(centroid, targets.style[ii], e) * inv_n;  // Eq. 7
     if (history) {
-      const glm::vec3 acc = centroids[ii] - 2.0f * targets.previous[ii] + targets.before_previous[ii];
-      cost.smooth += smooth_norm(glm::dot(acc, acc), e) * inv_n;  // Eq. 8-9
+      const V3 acc = acceleration(centroid, targets.previous[ii], targets.before_previous[ii]);
+      cost.smooth += smooth_norm(dot(acc, acc), e) * inv_n;  // Eq. 8-9
     }
   }
   cost.total = params.w_b * cost.balance + params.w_s * cost.style + params.w_m * cost.smooth;  // Eq. 10
@@ -297,7 +303,7 @@ void moved_gradient(const Skeleton& skeleton, const BalanceModel& model, const B
   const glm::vec3* c = s.centroids.data();
   const glm::vec2 d(com.x - targets.support_centre.x, com.z - targets.support_centre.y);
   const glm::vec2 u = d / std::sqrt(glm::dot(d, d) + e * e);
-  const glm::vec3 balance_dir = params.w_b * glm::vec3(u.x, 0.0f, u.y);
+  const V3 balance_dir = V3::load(params.w_b * glm::vec3(u.x, 0.0f, u.y));
   const bool history = targets.previous && targets.before_previous;
   for (int j : model.moved) {
     const size_t jj = static_cast<size_t>(j);
@@ -308,40 +314,48 @@ void moved_gradient(const Skeleton& skeleton, const BalanceModel& model, const B
   for (int i : model.moved_parts) {
     const size_t ii = static_cast<size_t>(i);
     const BalanceModel::Part& part = model.parts[ii];
-    glm::vec3 g = part.mass * balance_dir;
-    const glm::vec3 st = c[ii] - targets.style[ii];
-    g += (params.w_s * inv_n / std::sqrt(glm::dot(st, st) + e * e)) * st;
+    const V3 centroid = V3::load(c[ii]);
+    V3 g = part.mass * balance_dir;
+    const V3 st = centroid - V3::load(targets.style[ii]);
+    g += (params.w_s * inv_n / std::sqrt(dot(st, st) + e * e)) * st;
     if (history) {
-      const glm::vec3 acc = c[ii] - 2.0f * targets.previous[ii] + targets.before_previous[ii];
-      g += (params.w_m * inv_n / std::sqrt(glm::dot(acc, acc) + e * e)) * acc;
+      const V3 acc = acceleration(centroid, targets.previous[ii], targets.before_previous[ii]);
+      g += (params.w_m * inv_n / std::sqrt(dot(acc, acc) + e * e)) * acc;
     }
     const size_t prox = static_cast<size_t>(part.proximal), dist = static_cast<size_t>(part.distal);
-    if (model.is_moved[prox]) s.joint_point_gradient[prox] += (1.0f - part.f) * g;
-    if (model.is_moved[dist]) (part.distal_is_end_site ? s.end_point_gradient : s.joint_point_gradient)[dist] += part.f * g;
+    if (model.is_moved[prox]) (V3::load(s.joint_point_gradient[prox]) + (1.0f - part.f) * g).store(s.joint_point_gradient[prox]);
+    if (model.is_moved[dist]) {
+      glm::vec3& point = (part.distal_is_end_site ? s.end_point_gradient : s.joint_point_gradient)[dist];
+      (V3::load(point) + part.f * g).store(point);
+    }
   }
   // One backward pass (children come after their parents): a joint's subtree sums are complete when it is
   // reached; its own End Site joins first, as it turns with the joint.
   for (size_t m = model.moved.size(); m-- > 0;) {
     const size_t j = static_cast<size_t>(model.moved[m]);
-    const glm::vec3 x = s.positions[j];
+    const V3 x = V3::load(s.positions[j]);
+    V3 force = V3::load(s.subtree_force[j]), torque = V3::load(s.subtree_torque[j]);
+    V3 moment = V3::load(s.subtree_moment[j]);
+    float mass = s.subtree_mass[j];
     if (model.end_point[j]) {
-      const glm::vec3 ge = s.end_point_gradient[j];
-      const glm::vec3 end = x + quat::rotate(s.rotations[j], skeleton.joints[j].end_site);
-      s.subtree_force[j] += ge;
-      s.subtree_torque[j] += glm::cross(end, ge);
-      s.subtree_mass[j] += model.end_mass[j];
-      s.subtree_moment[j] += model.end_mass[j] * end;
+      const V3 ge = V3::load(s.end_point_gradient[j]);
+      const V3 end = x + V3::load(quat::rotate(s.rotations[j], skeleton.joints[j].end_site));
+      force += ge;
+      torque += cross(end, ge);
+      mass += model.end_mass[j];
+      moment += model.end_mass[j] * end;
     }
-    s.joint_gradient[j] = s.subtree_torque[j] - glm::cross(x, s.subtree_force[j]);
-    s.subtree_moment[j] -= s.subtree_mass[j] * x;  // now Q_j - M_j x_j (for com_response)
+    (torque - cross(x, force)).store(s.joint_gradient[j]);
+    moment -= mass * x;  // now Q_j - M_j x_j (for com_response)
+    moment.store(s.subtree_moment[j]);
     const size_t p = static_cast<size_t>(skeleton.joints[j].parent);
     if (!model.is_moved[p]) continue;
-    const glm::vec3 gj = s.joint_point_gradient[j];
-    s.subtree_force[p] += s.subtree_force[j] + gj;
-    s.subtree_torque[p] += s.subtree_torque[j] + glm::cross(x, gj);
-    const float mass_here = s.subtree_mass[j] + model.joint_mass[j];
+    const V3 gj = V3::load(s.joint_point_gradient[j]);
+    (V3::load(s.subtree_force[p]) + (force + gj)).store(s.subtree_force[p]);
+    (V3::load(s.subtree_torque[p]) + (torque + cross(x, gj))).store(s.subtree_torque[p]);
+    const float mass_here = mass + model.joint_mass[j];
     s.subtree_mass[p] += mass_here;
-    s.subtree_moment[p] += s.subtree_moment[j] + mass_here * x;
+    (V3::load(s.subtree_moment[p]) + (moment + mass_here * x)).store(s.subtree_moment[p]);
   }
 }
 
@@ -358,26 +372,27 @@ float step_motion(const Skeleton& skeleton, const BalanceModel& model, BalanceSc
   for (int j : model.moved) {
     const size_t jj = static_cast<size_t>(j);
     const size_t p = static_cast<size_t>(skeleton.joints[jj].parent);
-    glm::vec3 w(0.0f), v(0.0f);
+    V3 w = V3::zero(), v = V3::zero();
     if (model.is_moved[p]) {
-      w = s.angular[p];
-      v = s.linear[p] + glm::cross(w, s.positions[jj] - s.positions[p]);
+      w = V3::load(s.angular[p]);
+      v = V3::load(s.linear[p]) + cross(w, V3::load(s.positions[jj]) - V3::load(s.positions[p]));
     }
-    if (model.optimized_index[jj] >= 0) w -= s.joint_gradient[jj];
-    s.angular[jj] = w;
-    s.linear[jj] = v;
+    if (model.optimized_index[jj] >= 0) w -= V3::load(s.joint_gradient[jj]);
+    w.store(s.angular[jj]);
+    v.store(s.linear[jj]);
   }
   const auto point_speed = [&](int j, bool end_site) {
     const size_t jj = static_cast<size_t>(j);
-    if (!model.is_moved[jj]) return glm::vec3(0.0f);
-    if (!end_site) return s.linear[jj];
-    return s.linear[jj] + glm::cross(s.angular[jj], quat::rotate(s.rotations[jj], skeleton.joints[jj].end_site));
+    if (!model.is_moved[jj]) return V3::zero();
+    if (!end_site) return V3::load(s.linear[jj]);
+    return V3::load(s.linear[jj]) +
+           cross(V3::load(s.angular[jj]), rotate(s.rotations[jj], V3::load(skeleton.joints[jj].end_site)));
   };
   float largest2 = 0.0f;
   for (int i : model.moved_parts) {
     const BalanceModel::Part& part = model.parts[static_cast<size_t>(i)];
-    const glm::vec3 v = (1.0f - part.f) * point_speed(part.proximal, false) + part.f * point_speed(part.distal, part.distal_is_end_site);
-    largest2 = std::max(largest2, glm::dot(v, v));
+    const V3 v = (1.0f - part.f) * point_speed(part.proximal, false) + part.f * point_speed(part.distal, part.distal_is_end_site);
+    largest2 = std::max(largest2, dot(v, v));
   }
   return std::sqrt(largest2);
 }
@@ -386,8 +401,8 @@ float step_motion(const Skeleton& skeleton, const BalanceModel& model, BalanceSc
 float largest_move(const BalanceModel& model, const glm::vec3* a, const glm::vec3* b) {
   float largest2 = 0.0f;
   for (int i : model.moved_parts) {
-    const glm::vec3 v = a[static_cast<size_t>(i)] - b[static_cast<size_t>(i)];
-    largest2 = std::max(largest2, glm::dot(v, v));
+    const V3 v = V3::load(a[static_cast<size_t>(i)]) - V3::load(b[static_cast<size_t>(i)]);
+    largest2 = std::max(largest2, dot(v, v));
   }
   return std::sqrt(largest2);
 }
@@ -421,16 +436,17 @@ BalanceResult optimize_balance(const Skeleton& skeleton, const BalanceModel& mod
     const bool history = targets.previous && targets.before_previous;
     for (int i : model.moved_parts) {
       const size_t ii = static_cast<size_t>(i);
-      const glm::vec3 st = s.centroids[ii] - targets.style[ii];
-      fixed.style -= smooth_norm(glm::dot(st, st), e) * inv_n;
+      const V3 centroid = V3::load(s.centroids[ii]);
+      fixed.style -= style_term(centroid, targets.style[ii], e) * inv_n;
       if (history) {
-        const glm::vec3 acc = s.centroids[ii] - 2.0f * targets.previous[ii] + targets.before_previous[ii];
-        fixed.smooth -= smooth_norm(glm::dot(acc, acc), e) * inv_n;
+        const V3 acc = acceleration(centroid, targets.previous[ii], targets.before_previous[ii]);
+        fixed.smooth -= smooth_norm(dot(acc, acc), e) * inv_n;
       }
     }
   }
-  glm::vec3 fixed_com = model_center_of_mass(model, s.centroids.data());
-  for (int i : model.moved_parts) fixed_com -= model.parts[static_cast<size_t>(i)].mass * s.centroids[static_cast<size_t>(i)];
+  V3 fixed_com_sum = V3::load(model_center_of_mass(model, s.centroids.data()));
+  for (int i : model.moved_parts) fixed_com_sum -= model.parts[static_cast<size_t>(i)].mass * V3::load(s.centroids[static_cast<size_t>(i)]);
+  const glm::vec3 fixed_com = fixed_com_sum.vec();
   for (size_t k = 0; k < k_count; ++k) {
     s.base[k] = pose.rotations[static_cast<size_t>(model.optimized[k])];
     s.local[k] = s.base[k];
