@@ -5,6 +5,8 @@
 // three scalars each. Tested against glm in tests/motion/vector_ops_test.cpp.
 #pragma once
 
+#include <cmath>
+
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/vec3.hpp>
@@ -66,5 +68,9 @@ struct V3 {
   friend V3 rotate(const glm::quat& q, V3 v) { return {q * v.r}; }
 };
 #endif
+
+// glm::length and glm::normalize: sqrt(dot(v, v)) and v * (1 / sqrt(dot(v, v))).
+inline float length(V3 v) { return std::sqrt(dot(v, v)); }
+inline V3 normalize(V3 v) { return (1.0f / std::sqrt(dot(v, v))) * v; }
 
 }  // namespace prep

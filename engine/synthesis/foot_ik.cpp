@@ -5,31 +5,34 @@
 
 #include "engine/motion/kinematics.h"
 #include "engine/motion/quaternion_ops.h"
+#include "engine/motion/vector_ops.h"
 
 namespace prep {
 namespace {
 
 // The shortest rotation taking direction `from` to direction `to` (both non-zero): the half-angle
 // quaternion normalize(1 + cos, sin * axis) = normalize(1 + f.t, f x t), exact without trigonometry.
-glm::quat rotation_between(glm::vec3 from, glm::vec3 to) {
-  const glm::vec3 f = glm::normalize(from);
-  const glm::vec3 t = glm::normalize(to);
-  const float d = glm::dot(f, t);
+glm::quat rotation_between(V3 from, V3 to) {
+  const V3 f = normalize(from);
+  const V3 t = normalize(to);
+  const float d = dot(f, t);
   if (d > 0.999999f) return glm::quat(1, 0, 0, 0);
-  const glm::vec3 axis = glm::cross(f, t);
-  if (d < -0.999999f || glm::dot(axis, axis) < 1e-12f) {  // opposite: a half turn about an axis perpendicular to f
-    const glm::vec3 half_turn = glm::normalize(glm::cross(f, std::abs(f.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0)));
+  const V3 axis = cross(f, t);
+  if (d < -0.999999f || dot(axis, axis) < 1e-12f) {  // opposite: a half turn about an axis perpendicular to f
+    const glm::vec3 half_turn =
+        normalize(cross(f, V3::load(std::abs(f.x()) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0)))).vec();
     return glm::quat(0.0f, half_turn.x, half_turn.y, half_turn.z);
   }
-  return quat::normalize(glm::quat(1.0f + d, axis.x, axis.y, axis.z));
+  return quat::normalize(glm::quat(1.0f + d, axis.x(), axis.y(), axis.z()));
 }
+glm::quat rotation_between(glm::vec3 from, glm::vec3 to) { return rotation_between(V3::load(from), V3::load(to)); }
 
 // An angle in [0, pi] by its cosine and sine.
 struct Angle {
   float cos = 1.0f, sin = 0.0f;
 };
-Angle angle_between_unit(glm::vec3 a, glm::vec3 b) {
-  return {std::clamp(glm::dot(a, b), -1.0f, 1.0f), glm::length(glm::cross(a, b))};  // the sine exact near 0 and pi
+Angle angle_between_unit(V3 a, V3 b) {
+  return {std::clamp(dot(a, b), -1.0f, 1.0f), length(cross(a, b))};  // the sine exact near 0 and pi
 }
 Angle angle_of_cosine(float cosine) {
   const float c = std::clamp(cosine, -1.0f, 1.0f);
@@ -64,15 +67,16 @@ glm::vec3 solve_leg(const Skeleton& skeleton, const LegChain& leg, const IkParam
                     const glm::quat& foot_world, glm::vec3 forward, glm::vec3 body_shift) {
   const size_t hip = static_cast<size_t>(leg.hip), knee = static_cast<size_t>(leg.knee),
                ankle = static_cast<size_t>(leg.ankle);
-  const glm::vec3 a = wp[hip] + body_shift, b = wp[knee] + body_shift, c = wp[ankle] + body_shift;
-  const float upper = glm::length(b - a), lower = glm::length(c - b);
+  const V3 shift = V3::load(body_shift);
+  const V3 a = V3::load(wp[hip]) + shift, b = V3::load(wp[knee]) + shift, c = V3::load(wp[ankle]) + shift;
+  const float upper = length(b - a), lower = length(c - b);
   const float full = upper + lower;
   const float eps = 1e-5f * full;
 
   // Softened reach: exact up to `soft`; beyond it the reach tends to (but never reaches) full length.
-  glm::vec3 to_target = target - a;
-  const float wanted = glm::length(to_target);
-  const float current = glm::length(c - a);
+  V3 to_target = V3::load(target) - a;
+  const float wanted = length(to_target);
+  const float current = length(c - a);
   const float limit = std::min(params.reach_limit * full, full - eps);
   const float soft = std::min(std::max(params.knee_soft_start * full, current), limit);
   float reach = wanted;
@@ -81,25 +85,24 @@ glm::vec3 solve_leg(const Skeleton& skeleton, const LegChain& leg, const IkParam
     reach = band > 1e-7f ? soft + band * (1.0f - std::exp(-(wanted - soft) / band)) : soft;
   }
   reach = std::max(reach, std::abs(upper - lower) + eps);
-  if (wanted > 1e-7f) target = a + to_target * (reach / wanted);
-  else target = c;  // degenerate request: keep the ankle
-  to_target = target - a;
+  // The target brought within reach (a degenerate request keeps the ankle), as seen from the hip.
+  to_target = (wanted > 1e-7f ? a + (reach / wanted) * to_target : c) - a;
 
   // Knee: set the hip-ankle distance to `reach` by the law of cosines, bending in the knee's current plane.
-  const glm::vec3 ac = glm::normalize(c - a);
-  glm::vec3 axis = glm::cross(c - a, b - a);
-  if (glm::dot(axis, axis) < 1e-8f * upper * upper * lower * lower) axis = glm::cross(c - a, forward);
-  axis = glm::normalize(axis);
-  const glm::vec3 ab = glm::normalize(b - a);
+  const V3 ac = normalize(c - a);
+  V3 axis = cross(c - a, b - a);
+  if (dot(axis, axis) < 1e-8f * upper * upper * lower * lower) axis = cross(c - a, V3::load(forward));
+  axis = normalize(axis);
+  const V3 ab = normalize(b - a);
   const Angle ac_ab_0 = angle_between_unit(ac, ab);
-  const Angle ba_bc_0 = angle_between_unit(-ab, glm::normalize(c - b));
+  const Angle ba_bc_0 = angle_between_unit(-ab, normalize(c - b));
   const Angle ac_ab_1 = angle_of_cosine((lower * lower - upper * upper - reach * reach) / (-2.0f * upper * reach));
   const Angle ba_bc_1 = angle_of_cosine((reach * reach - upper * upper - lower * lower) / (-2.0f * upper * lower));
-  const glm::quat r0 = turn_between(ac_ab_0, ac_ab_1, axis);  // at the hip, in world
-  const glm::quat r1 = turn_between(ba_bc_0, ba_bc_1, axis);  // at the knee, in world
+  const glm::quat r0 = turn_between(ac_ab_0, ac_ab_1, axis.vec());  // at the hip, in world
+  const glm::quat r1 = turn_between(ba_bc_0, ba_bc_1, axis.vec());  // at the knee, in world
   // Then swing the whole leg about the hip so that the (new) ankle direction points at the target.
   const glm::quat r01 = quat::mul(r0, r1);
-  const glm::vec3 bent = quat::rotate(r0, b - a) + quat::rotate(r01, c - b);  // hip to ankle, the knee bent
+  const V3 bent = rotate(r0, b - a) + rotate(r01, c - b);  // hip to ankle, the knee bent
   const glm::quat r2 = rotation_between(bent, to_target);
 
   // The new world rotations, then the local ones. The world rotations are unit quaternions (normalized
@@ -118,7 +121,7 @@ glm::vec3 solve_leg(const Skeleton& skeleton, const LegChain& leg, const IkParam
   }
   const glm::quat above_ankle = quat::mul(knee_world, between);
   pose.rotations[ankle] = quat::normalize(quat::mul(glm::inverse(above_ankle), foot_world));
-  return a + quat::rotate(r2, bent);
+  return (a + rotate(r2, bent)).vec();
 }
 
 FrameContacts select_pinned_points(const FrameContacts& contacts, const std::array<float, 2>& heel_speed,

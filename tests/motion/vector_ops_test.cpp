@@ -15,7 +15,7 @@ bool same_bits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 }  // namespace
 
-TEST_CASE("vector ops: sums, products, crosses, dots and rotations in a register are glm's to the bit") {
+TEST_CASE("vector ops: sums, products, crosses, dots, lengths, normalization and rotations in a register are glm's to the bit") {
   // Magnitudes from 1e-6 to 1e2 and mixed signs, so that a reordered sum (say x + (y + z) for a dot
   // product) would show in the last bit somewhere.
   std::mt19937 rng(5);
@@ -34,6 +34,8 @@ TEST_CASE("vector ops: sums, products, crosses, dots and rotations in a register
     REQUIRE(same_bits(cross(va, vb).vec(), glm::cross(a, b)));
     REQUIRE(same_bits(dot(va, vb), glm::dot(a, b)));
     REQUIRE(same_bits(rotate(q, va).vec(), q * a));
+    REQUIRE(same_bits(length(va), glm::length(a)));
+    REQUIRE(same_bits(normalize(va).vec(), glm::normalize(a)));
     V3 sum = va;
     sum += vb;
     sum -= s * va;
