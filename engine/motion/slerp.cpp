@@ -90,6 +90,14 @@ inline __m128 select(__m128 mask, __m128 if_set, __m128 if_clear) {
 
 // Four rotations: the quaternions transposed so that each register holds one number of all four.
 void slerp_four(const glm::quat* qa, const glm::quat* qb, __m128 t, glm::quat* out) {
+  const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f);
+  // t <= 0 keeps a, t >= 1 takes b as given (as slerp_one); when every lane does, nothing else is needed.
+  const __m128 at_a = _mm_cmple_ps(t, zero), at_b = _mm_cmpge_ps(t, one);
+  const int taken_a = _mm_movemask_ps(at_a), taken_b = _mm_movemask_ps(at_b);
+  if ((taken_a | taken_b) == 0xF) {
+    for (int k = 0; k < 4; ++k) out[k] = (taken_a >> k) & 1 ? qa[k] : qb[k];
+    return;
+  }
   const float* fa = reinterpret_cast<const float*>(qa);
   const float* fb = reinterpret_cast<const float*>(qb);
   __m128 a0 = _mm_loadu_ps(fa), a1 = _mm_loadu_ps(fa + 4), a2 = _mm_loadu_ps(fa + 8), a3 = _mm_loadu_ps(fa + 12);
@@ -99,11 +107,14 @@ void slerp_four(const glm::quat* qa, const glm::quat* qb, __m128 t, glm::quat* o
   __m128 d = _mm_add_ps(_mm_mul_ps(a0, b0), _mm_mul_ps(a1, b1));
   d = _mm_add_ps(d, _mm_mul_ps(a2, b2));
   d = _mm_add_ps(d, _mm_mul_ps(a3, b3));
-  const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f);
   const __m128 flip = _mm_and_ps(_mm_cmplt_ps(d, zero), _mm_set1_ps(-0.0f));  // the sign bit where d < 0
   const __m128 f0 = _mm_xor_ps(b0, flip), f1 = _mm_xor_ps(b1, flip), f2 = _mm_xor_ps(b2, flip), f3 = _mm_xor_ps(b3, flip);
   d = _mm_xor_ps(d, flip);
-  const __m128 x = _mm_max_ps(zero, _mm_sub_ps(one, d));
+  // A lane that takes a or b as given needs no series: its x is taken as 0, so its terms vanish and do
+  // not keep the loop going. The other lanes' sums are the same to the bit: the loop only ever ran on past
+  // a lane once its terms were below kSmallestTerm, and adding less than half a unit in the last place to
+  // a sum in [1, 2) leaves it as it is.
+  const __m128 x = _mm_andnot_ps(_mm_or_ps(at_a, at_b), _mm_max_ps(zero, _mm_sub_ps(one, d)));
   const __m128 tc = _mm_min_ps(_mm_max_ps(t, zero), one);
   const __m128 s = _mm_sub_ps(one, tc);
   const __m128 s2 = _mm_mul_ps(s, s), t2 = _mm_mul_ps(tc, tc);
@@ -131,8 +142,6 @@ void slerp_four(const glm::quat* qa, const glm::quat* qb, __m128 t, glm::quat* o
   q1 = _mm_div_ps(q1, length);
   q2 = _mm_div_ps(q2, length);
   q3 = _mm_div_ps(q3, length);
-  // t <= 0 keeps a, t >= 1 takes b as given (as slerp_one).
-  const __m128 at_a = _mm_cmple_ps(t, zero), at_b = _mm_cmpge_ps(t, one);
   q0 = select(at_a, a0, select(at_b, b0, q0));
   q1 = select(at_a, a1, select(at_b, b1, q1));
   q2 = select(at_a, a2, select(at_b, b2, q2));

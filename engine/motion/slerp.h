@@ -12,8 +12,9 @@
 // (a half turn, x = 1) it is at most 28.
 //
 // The results are normalized. They agree with the trigonometric slerp to float precision (the test
-// "slerp: the series ..." in tests/motion/slerp_test.cpp); the SSE2 and the scalar path do the same
-// arithmetic in the same order, so they agree to the last few bits.
+// "slerp: the series ..." in tests/motion/slerp_test.cpp). The SSE2 and the scalar path do the same
+// arithmetic in the same order and agree to the bit: four lanes run as many terms as the slowest of them
+// needs, but a term below 1e-8 added to a sum in [1, 2) leaves it as it is.
 #pragma once
 
 #include <cstddef>

@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <cstring>
 #include <random>
 #include <vector>
 
@@ -101,4 +102,35 @@ TEST_CASE("slerp: the SSE2 path and the scalar path agree on every rotation of a
       CHECK(angle_between(glm::dquat(same_t[i]), glm::dquat(slerp_shorter(a[i], b[i], 0.37f))) < 1e-6);
     }
   }
+}
+
+TEST_CASE("slerp: four lanes give each rotation's scalar result to the bit, whatever the other lanes ask") {
+  // Lanes at an end (t <= 0 or t >= 1) beside lanes between, at small and large angles: a lane's result
+  // may not depend on how long its neighbours' series run (it stops adding terms once they are below a
+  // half unit in the last place of its sum), nor on whether all four lanes only take an end.
+  std::mt19937 rng(29);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f), angle(0.0f, 3.1f);
+  std::uniform_int_distribution<int> kind(0, 3);
+  int between = 0, all_at_ends = 0;
+  for (int group = 0; group < 20000; ++group) {
+    glm::quat a[4], b[4], simd[4];
+    float t[4];
+    for (int k = 0; k < 4; ++k) {
+      a[k] = random_rotation(rng);
+      b[k] = turned(a[k], kind(rng) == 0 ? 0.02f * unit(rng) : angle(rng), rng);
+      if (kind(rng) == 0) b[k] = -b[k];
+      const int end = group % 7 == 0 ? kind(rng) % 2 : kind(rng);
+      t[k] = end == 0 ? -0.5f * unit(rng) : end == 1 ? 1.0f + unit(rng) : unit(rng);
+    }
+    slerp_shorter(a, b, t, simd, 4);
+    bool only_ends = true;
+    for (int k = 0; k < 4; ++k) {
+      const glm::quat scalar = slerp_shorter(a[k], b[k], t[k]);
+      REQUIRE(std::memcmp(&simd[k], &scalar, sizeof scalar) == 0);
+      if (t[k] > 0.0f && t[k] < 1.0f) only_ends = false, ++between;
+    }
+    all_at_ends += only_ends;
+  }
+  CHECK(between > 20000);
+  CHECK(all_at_ends > 1000);
 }
