@@ -8,6 +8,7 @@
 
 #include "engine/motion/joint_names.h"
 #include "engine/motion/kinematics.h"
+#include "engine/motion/vector_ops.h"
 
 namespace prep {
 namespace {
@@ -40,12 +41,6 @@ struct Rest {
   std::vector<glm::vec3> positions;
   std::vector<glm::quat> rotations;
 };
-
-glm::vec3 point_of(const Skeleton& sk, const BodySegment& s, const std::vector<glm::vec3>& positions,
-                   const std::vector<glm::quat>& rotations) {
-  return s.distal_is_end_site ? end_site_position(sk, s.distal, positions, rotations)
-                              : positions[static_cast<size_t>(s.distal)];
-}
 
 // The third knuckle (de Leva's MET3) that ends the hand: the first joint below the wrist named like the
 // middle finger or the fingers, else the wrist's End Site, else the wrist itself.
@@ -159,20 +154,23 @@ void segment_centroids(const Skeleton& skeleton, const MassModel& model, const s
   out.resize(model.segments.size());
   for (size_t i = 0; i < model.segments.size(); ++i) {
     const BodySegment& s = model.segments[i];
-    const glm::vec3 a = world_positions[static_cast<size_t>(s.proximal)];
-    const glm::vec3 b = point_of(skeleton, s, world_positions, world_rotations);
-    out[i] = a + (b - a) * s.com_fraction;
+    const size_t d = static_cast<size_t>(s.distal);
+    const V3 a = V3::load(world_positions[static_cast<size_t>(s.proximal)]);
+    const V3 b = s.distal_is_end_site
+                     ? V3::load(world_positions[d]) + rotate(world_rotations[d], V3::load(skeleton.joints[d].end_site))
+                     : V3::load(world_positions[d]);
+    (a + s.com_fraction * (b - a)).store(out[i]);  // the distal point: the joint, or its End Site
   }
 }
 
 glm::vec3 center_of_mass(const MassModel& model, const std::vector<glm::vec3>& centroids) {
-  glm::vec3 sum(0.0f);
+  V3 sum = V3::zero();
   float mass = 0.0f;
   for (size_t i = 0; i < model.segments.size() && i < centroids.size(); ++i) {
-    sum += centroids[i] * model.segments[i].mass_fraction;
+    sum += model.segments[i].mass_fraction * V3::load(centroids[i]);
     mass += model.segments[i].mass_fraction;
   }
-  return mass > 0.0f ? sum / mass : sum;
+  return mass > 0.0f ? sum.vec() / mass : sum.vec();
 }
 
 }  // namespace prep
