@@ -258,8 +258,6 @@ void moved_centroids(const Skeleton& skeleton, const BalanceModel& model, const 
   }
 }
 
-// Eq. 6-10 when only the moved parts differ from a posture whose cost over the other parts is `fixed`
-// (style, smoothness); the COM takes every part.
 // The COM from the parts that never move (fixed_com, their weighted sum) and the moved parts.
 inline glm::vec3 moved_com(const BalanceModel& model, const glm::vec3& fixed_com, const glm::vec3* centroids) {
   V3 com = V3::load(fixed_com);
@@ -267,6 +265,8 @@ inline glm::vec3 moved_com(const BalanceModel& model, const glm::vec3& fixed_com
   return com.vec();
 }
 
+// Eq. 6-10 when only the moved parts differ from a posture whose cost over the other parts is `fixed`
+// (style, smoothness); the COM takes every part.
 BalanceCost moved_cost(const BalanceModel& model, const BalanceParams& params, const BalanceTargets& targets,
                        const glm::vec3* centroids, const BalanceCost& fixed, const glm::vec3& fixed_com) {
   const float e = params.norm_smoothing;
@@ -339,7 +339,7 @@ void moved_gradient(const Skeleton& skeleton, const BalanceModel& model, const B
     float mass = s.subtree_mass[j];
     if (model.end_point[j]) {
       const V3 ge = V3::load(s.end_point_gradient[j]);
-      const V3 end = x + V3::load(quat::rotate(s.rotations[j], skeleton.joints[j].end_site));
+      const V3 end = x + rotate(s.rotations[j], V3::load(skeleton.joints[j].end_site));
       force += ge;
       torque += cross(end, ge);
       mass += model.end_mass[j];
