@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "engine/motion/slerp.h"
+
 namespace prep {
 
 Player::Player(const MotionGraph& graph) : graph_(&graph) {
@@ -179,10 +181,40 @@ void Player::pose_at(int frame, Pose& out) const {
 void Player::sample(float t, Pose& out) const {
   const float f = std::max(0.0f, t * fps_);
   const int i0 = static_cast<int>(std::floor(f));
+  const float w = f - static_cast<float>(i0);
+  if (sample_within_segment(i0, w, out)) return;
   thread_local Pose a, b;
   pose_at(i0, a);
   pose_at(i0 + 1, b);
-  interpolate(a, b, f - static_cast<float>(i0), out);
+  interpolate(a, b, w, out);
+}
+
+bool Player::sample_within_segment(int i0, float w, Pose& out) const {
+  if (segments_.empty()) return false;
+  const int f0 = std::clamp(i0, 0, frame_count() - 1), f1 = std::clamp(i0 + 1, 0, frame_count() - 1);
+  const auto it = std::upper_bound(segments_.begin(), segments_.end(), f0,
+                                   [](int f, const Segment& s) { return f < s.stream_first; });
+  const size_t index = static_cast<size_t>(it - segments_.begin()) - 1;
+  const Segment& s = segments_[index];
+  const int d0 = f0 - s.stream_first;
+  if (d0 < s.blend && index > 0) return false;                                                // cross-fading
+  if (index + 1 < segments_.size() && f1 >= segments_[index + 1].stream_first) return false;  // the next clip
+  // interpolate(pose_at(i0), pose_at(i0 + 1), w) without the two copies: only the root is placed, every
+  // other joint is the clip's. Each rotation's slerp is the same alone as in a group of four
+  // (engine/motion/slerp.h), so the root can be taken apart from the rest.
+  const Clip& clip = graph_->set().clips[static_cast<size_t>(s.node)].clip;
+  const int last = clip.frame_count() - 1;
+  const Pose& a = clip.frames[static_cast<size_t>(std::clamp(s.first + d0, 0, last))];
+  const Pose& b = clip.frames[static_cast<size_t>(std::clamp(s.first + f1 - s.stream_first, 0, last))];
+  const glm::vec3 root_a = s.place.apply(a.root_position), root_b = s.place.apply(b.root_position);
+  out.root_position = root_a + (root_b - root_a) * w;
+  const size_t n = a.rotations.size();
+  out.rotations.resize(n);
+  if (n == 0) return true;
+  const glm::quat place = s.place.rotation();
+  out.rotations[0] = slerp_shorter(glm::normalize(place * a.rotations[0]), glm::normalize(place * b.rotations[0]), w);
+  slerp_shorter(a.rotations.data() + 1, b.rotations.data() + 1, w, out.rotations.data() + 1, n - 1);
+  return true;
 }
 
 }  // namespace prep

@@ -1,9 +1,13 @@
 // The motion graph and player on the built-in library (engine/library).
 #include <doctest/doctest.h>
 
+#include <cmath>
+#include <cstring>
 #include <stdexcept>
 
 #include "engine/graph/motion_graph.h"
+#include "engine/graph/player.h"
+#include "engine/motion/pose.h"
 #include "engine/library/builtin.h"
 #include "tests/graph/builtin_set.h"
 #include "tests/graph/graph_checks.h"
@@ -94,5 +98,40 @@ TEST_CASE("player: the root keeps moving through a loop wrap") {
     const float step = glm::length(glm::vec2(b.root_position.x - a.root_position.x, b.root_position.z - a.root_position.z));
     CHECK(step > 0.7f * mean);
     CHECK(step < 1.3f * mean);
+  }
+}
+
+TEST_CASE("player: sampling between two frames is the interpolation of the frames to the bit, across switches and fades") {
+  // sample() reads a frame pair inside one clip in place; across a switch or in a cross-fade it goes
+  // through pose_at. Either way it must be interpolate(pose_at(i), pose_at(i + 1), w), bit for bit.
+  const MotionGraph g = MotionGraph::build(builtin(), Params().graph);
+  const int walk = g.find("walk"), idle = g.find("idle");
+  REQUIRE(walk >= 0);
+  REQUIRE(idle >= 0);
+  Player player(g);
+  player.start(walk, -1, FloorTransform{0.7f, glm::vec2(1.5f, -2.0f)});
+  player.push(walk);
+  player.push(idle);
+  player.push(walk);
+  REQUIRE(player.switches().size() == 3);
+  int faded = 0;
+  for (const Player::Switch& s : player.switches()) faded += s.blend_frames > 0;
+  CHECK(faded > 0);
+  Pose a, b, expected, sampled;
+  for (int frame = 0; frame <= player.frame_count() + 1; ++frame) {
+    for (float fraction : {0.0f, 0.25f, 0.5f, 0.999f}) {
+      const float t = (static_cast<float>(frame) + fraction) / player.fps();
+      const float f = t * player.fps();
+      const int i = static_cast<int>(std::floor(f));
+      CAPTURE(frame);
+      CAPTURE(fraction);
+      player.pose_at(i, a);
+      player.pose_at(i + 1, b);
+      interpolate(a, b, f - static_cast<float>(i), expected);
+      player.sample(t, sampled);
+      REQUIRE(sampled.rotations.size() == expected.rotations.size());
+      REQUIRE(std::memcmp(&sampled.root_position, &expected.root_position, sizeof(glm::vec3)) == 0);
+      REQUIRE(std::memcmp(sampled.rotations.data(), expected.rotations.data(), sizeof(glm::quat) * expected.rotations.size()) == 0);
+    }
   }
 }
