@@ -45,12 +45,36 @@ float height_relative_to_root(const Skeleton& skeleton, const Pose& pose, int jo
 #endif
 }
 
+namespace {
+
+// blended's height of `joint` relative to the root minus locomotion's: height_relative_to_root of both,
+// walked up the chain together (two independent chains of rotations in flight instead of one).
+float height_change(const Skeleton& skeleton, const Pose& locomotion, const Pose& blended, int joint) {
+#if defined(__SSE2__)
+  using namespace kinematics_detail;
+  __m128 p_blended = _mm_setzero_ps(), p_locomotion = _mm_setzero_ps();
+  for (int j = joint; j > 0;) {
+    const Joint& J = skeleton.joints[static_cast<size_t>(j)];
+    const __m128 offset = load_vec3(J.offset);
+    p_blended = _mm_add_ps(offset, rotate(load_quat(blended.rotations[static_cast<size_t>(j)]), p_blended));
+    p_locomotion = _mm_add_ps(offset, rotate(load_quat(locomotion.rotations[static_cast<size_t>(j)]), p_locomotion));
+    j = J.parent;
+  }
+  glm::vec3 b, l;
+  store_vec3(b, rotate(load_quat(blended.rotations[0]), p_blended));
+  store_vec3(l, rotate(load_quat(locomotion.rotations[0]), p_locomotion));
+  return b.y - l.y;
+#else
+  return height_relative_to_root(skeleton, blended, joint) - height_relative_to_root(skeleton, locomotion, joint);
+#endif
+}
+
+}  // namespace
+
 void foot_height_changes(const Skeleton& skeleton, const BodyMap& body, const Pose& locomotion, const Pose& blended,
                          float& dy_left, float& dy_right) {
-  const int la = body.legs[kLeft].ankle;
-  const int ra = body.legs[kRight].ankle;
-  dy_left = height_relative_to_root(skeleton, blended, la) - height_relative_to_root(skeleton, locomotion, la);
-  dy_right = height_relative_to_root(skeleton, blended, ra) - height_relative_to_root(skeleton, locomotion, ra);
+  dy_left = height_change(skeleton, locomotion, blended, body.legs[kLeft].ankle);
+  dy_right = height_change(skeleton, locomotion, blended, body.legs[kRight].ankle);
 }
 
 glm::quat heading_rotation(float heading) { return glm::angleAxis(heading, glm::vec3(0.0f, 1.0f, 0.0f)); }
