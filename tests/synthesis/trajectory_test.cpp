@@ -5,6 +5,7 @@
 #include <random>
 
 #include <cmath>
+#include <cstring>
 
 #include "engine/synthesis/synthesizer.h"
 #include "test_rig.h"
@@ -90,6 +91,30 @@ TEST_CASE("height of a joint relative to the root walks its chain") {
   CHECK(height_relative_to_root(*skeleton, pose, skeleton->find("lFoot")) == doctest::Approx(-0.90f));
   pose.rotations[0] = glm::angleAxis(3.14159265f, glm::vec3(0, 0, 1));  // upside down
   CHECK(height_relative_to_root(*skeleton, pose, skeleton->find("lFoot")) == doctest::Approx(0.90f));
+}
+
+TEST_CASE("the feet's height changes are the differences of their heights relative to the root, to the bit") {
+  // foot_height_changes walks the blended and the locomotion chains together; each must stay the single
+  // walk's arithmetic.
+  const auto skeleton = test::make_test_skeleton();
+  const BodyMap body = BodyMap::detect(*skeleton);
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  const auto random_pose = [&] {
+    Pose pose(skeleton->size());
+    for (glm::quat& q : pose.rotations) q = glm::normalize(glm::quat(u(rng), u(rng), u(rng), u(rng)));
+    return pose;
+  };
+  for (int k = 0; k < 1000; ++k) {
+    const Pose locomotion = random_pose(), blended = random_pose();
+    float dy_left = 0.0f, dy_right = 0.0f;
+    foot_height_changes(*skeleton, body, locomotion, blended, dy_left, dy_right);
+    const int left = body.legs[kLeft].ankle, right = body.legs[kRight].ankle;
+    const float left_expected = height_relative_to_root(*skeleton, blended, left) - height_relative_to_root(*skeleton, locomotion, left);
+    const float right_expected = height_relative_to_root(*skeleton, blended, right) - height_relative_to_root(*skeleton, locomotion, right);
+    REQUIRE(std::memcmp(&dy_left, &left_expected, sizeof(float)) == 0);
+    REQUIRE(std::memcmp(&dy_right, &right_expected, sizeof(float)) == 0);
+  }
 }
 
 }  // namespace prep
