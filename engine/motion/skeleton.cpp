@@ -1,5 +1,6 @@
 #include "engine/motion/skeleton.h"
 
+#include <algorithm>
 #include <stdexcept>
 #include <unordered_set>
 
@@ -21,6 +22,19 @@ void Skeleton::validate() const {
       throw std::invalid_argument("joint '" + j.name + "' does not come after its parent");
     if (!names.insert(j.name).second) throw std::invalid_argument("joint name '" + j.name + "' repeats");
   }
+}
+
+std::vector<int> breadth_first(const Skeleton& skeleton, std::vector<int> joints) {
+  std::vector<int> depth(skeleton.joints.size(), 0);
+  for (size_t j = 0; j < skeleton.joints.size(); ++j) {
+    const int parent = skeleton.joints[j].parent;
+    if (parent >= 0) depth[j] = depth[static_cast<size_t>(parent)] + 1;
+  }
+  std::stable_sort(joints.begin(), joints.end(), [&](int a, int b) {
+    const int da = depth[static_cast<size_t>(a)], db = depth[static_cast<size_t>(b)];
+    return da != db ? da < db : a < b;
+  });
+  return joints;
 }
 
 }  // namespace prep

@@ -27,4 +27,10 @@ struct Skeleton {
   void validate() const;
 };
 
+// The listed joints level by level: by depth below the root, then by index. Parents still come before
+// their children, and the joints of one level do not depend on each other, so a kinematics pass in this
+// order has several joints' arithmetic in flight at once where skeleton order mostly waits for the
+// joint just before (a chain runs parent, child, grandchild). Each joint's arithmetic is the same.
+std::vector<int> breadth_first(const Skeleton& skeleton, std::vector<int> joints);
+
 }  // namespace prep

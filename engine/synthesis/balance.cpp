@@ -108,6 +108,7 @@ BalanceModel BalanceModel::build(const Skeleton& skeleton, const BodyMap& body, 
       model.is_moved[j] = 1;
     }
   }
+  model.moved = breadth_first(skeleton, model.moved);
   for (size_t i = 0; i < model.parts.size(); ++i) {
     const Part& part = model.parts[i];
     // A part moves if either of its points does: the distal point when its joint is moved (an End Site

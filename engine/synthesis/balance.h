@@ -37,7 +37,8 @@ struct BalanceModel {
   std::vector<int> optimized;
   // The joints whose world position or rotation a change of the optimized joints can move and that the
   // mass table reads (the optimized joints and the joints below them on a path to a body part's point),
-  // in skeleton order (parents first): a trial posture re-runs forward kinematics on these only.
+  // parents first, level by level (breadth_first): a trial posture re-runs forward kinematics on these
+  // only, and the gradient's backward pass takes them in reverse.
   std::vector<int> moved;
   std::vector<int> moved_parts;     // the body parts that have a point a change of the optimized joints moves
   std::vector<int> optimized_index; // per joint: its index in `optimized`, or -1

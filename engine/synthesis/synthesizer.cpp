@@ -10,8 +10,8 @@
 namespace prep {
 namespace {
 
-// Forward kinematics of the listed joints only (in skeleton order, each listed with its ancestors): the same
-// arithmetic as forward_kinematics, for the leg chains the foot IK reads.
+// Forward kinematics of the listed joints only (parents before children, each listed with its ancestors):
+// the same arithmetic as forward_kinematics.
 void chain_kinematics(const Skeleton& skeleton, const std::vector<int>& joints, const Pose& pose,
                       std::vector<glm::vec3>& positions, std::vector<glm::quat>& rotations) {
   for (int j : joints) {
@@ -64,7 +64,11 @@ Synthesizer::Synthesizer(std::shared_ptr<const Skeleton> skeleton, BodyMap body,
   }
   for (int j = 0; j < skeleton_->size(); ++j) {
     if (leg[static_cast<size_t>(j)]) leg_joints_.push_back(j);
+    all_joints_.push_back(j);
   }
+  // The kinematics passes below run level by level (breadth_first): the two legs side by side.
+  leg_joints_ = breadth_first(*skeleton_, leg_joints_);
+  all_joints_ = breadth_first(*skeleton_, all_joints_);
   std::vector<char> foot(static_cast<size_t>(skeleton_->size()), 0);
   for (const LegChain& chain : body_.legs) {
     if (chain.ankle >= 0) foot[static_cast<size_t>(chain.ankle)] = 1;
@@ -82,6 +86,8 @@ Synthesizer::Synthesizer(std::shared_ptr<const Skeleton> skeleton, BodyMap body,
     below[jj] = balance_model_.optimized_index[jj] >= 0 || (parent >= 0 && below[static_cast<size_t>(parent)]);
     if (below[jj] && !balance_model_.is_moved[jj]) balance_stale_.push_back(j);
   }
+  foot_joints_ = breadth_first(*skeleton_, foot_joints_);
+  balance_stale_ = breadth_first(*skeleton_, balance_stale_);
 }
 
 void Synthesizer::set_params(const Params& params) {
@@ -148,12 +154,12 @@ void Synthesizer::stage_ik(const SynthesisInput& in, SynthesisState& state, Synt
   s.pinned = select_pinned_points(in.contacts, heel_speed, toe_speed, params_.ik);
 
   if (!params_.ik.enabled) {
-    forward_kinematics(*skeleton_, out, s.positions, &s.rotations);
+    chain_kinematics(*skeleton_, all_joints_, out, s.positions, s.rotations);
     return;
   }
   chain_kinematics(*skeleton_, leg_joints_, out, s.positions, s.rotations);
   apply_foot_ik(*skeleton_, body_, params_.ik, s.pinned, in.dt, out, s.positions, s.rotations, state.feet, state.root_drop);
-  forward_kinematics(*skeleton_, out, s.positions, &s.rotations);
+  chain_kinematics(*skeleton_, all_joints_, out, s.positions, s.rotations);
 }
 
 void Synthesizer::stage_balance(const SynthesisInput& in, SynthesisState& state, SynthesisScratch& s, Pose& out,
@@ -236,7 +242,7 @@ void Synthesizer::step(const SynthesisInput& in, SynthesisState& state, Synthesi
 
 void Synthesizer::stage_floor(SynthesisScratch& s, Pose& out, bool kinematics_given) const {
   if (!kinematics_given) {
-    forward_kinematics(*skeleton_, out, s.positions, &s.rotations);
+    forward_kinematics(*skeleton_, out, s.positions, &s.rotations);  // sizes the buffers of any scratch
     s.support_of_output = false;  // a pose the stages before did not make
   }
   const float root_height = out.root_position.y;
@@ -244,7 +250,7 @@ void Synthesizer::stage_floor(SynthesisScratch& s, Pose& out, bool kinematics_gi
   // pitched up about their ankles only from the ankles down (the joints above are as they were).
   const int turned = keep_toes_above_floor(*skeleton_, body_, out, s.positions, s.rotations);
   if (out.root_position.y != root_height) {
-    forward_kinematics(*skeleton_, out, s.positions, &s.rotations);
+    chain_kinematics(*skeleton_, all_joints_, out, s.positions, s.rotations);
     s.support_of_output = false;
   } else if (turned > 0) {
     chain_kinematics(*skeleton_, foot_joints_, out, s.positions, s.rotations);

@@ -135,9 +135,11 @@ class Synthesizer {
   Params params_;
   BlendCurves curves_;
   BalanceModel balance_model_;
-  std::vector<int> leg_joints_;  // the leg chains (hip to toe tip) and their ancestors, in skeleton order
-  std::vector<int> foot_joints_;  // the ankles and every joint below them, in skeleton order
-  std::vector<int> balance_stale_;  // joints whose kinematics the balance optimizer leaves stale, in skeleton order
+  // Joint lists for partial kinematics passes, each level by level (breadth_first):
+  std::vector<int> all_joints_;     // every joint
+  std::vector<int> leg_joints_;     // the leg chains (hip to toe tip) and their ancestors
+  std::vector<int> foot_joints_;    // the ankles and every joint below them
+  std::vector<int> balance_stale_;  // joints whose kinematics the balance optimizer leaves stale
 };
 
 }  // namespace prep

@@ -3,6 +3,7 @@
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <algorithm>
+#include <cstring>
 #include <random>
 #include <string>
 #include <vector>
@@ -117,4 +118,46 @@ TEST_CASE("forward kinematics: a whole 43-joint body through place_joint stays w
     scalar_rotations[j] = scalar_rotations[p] * pose.rotations[j];
   }
   for (size_t j = 0; j < 43; ++j) CHECK(glm::length(positions[j] - scalar[j]) < 1e-5f);
+}
+
+TEST_CASE("breadth_first: level by level, parents first, and a pass in that order gives forward kinematics to the bit") {
+  // root -> pelvis -> {left hip -> knee -> ankle, right hip -> knee -> ankle}, spine -> head.
+  Skeleton s;
+  s.joints.push_back({"root", -1, {0, 0, 0}, false, {}});
+  s.joints.push_back({"pelvis", 0, {0, 0.1f, 0}, false, {}});
+  s.joints.push_back({"l_hip", 1, {0.1f, -0.05f, 0}, false, {}});
+  s.joints.push_back({"l_knee", 2, {0, -0.42f, 0}, false, {}});
+  s.joints.push_back({"l_ankle", 3, {0, -0.43f, 0}, false, {}});
+  s.joints.push_back({"r_hip", 1, {-0.1f, -0.05f, 0}, false, {}});
+  s.joints.push_back({"r_knee", 5, {0, -0.42f, 0}, false, {}});
+  s.joints.push_back({"r_ankle", 6, {0, -0.43f, 0}, false, {}});
+  s.joints.push_back({"spine", 1, {0, 0.2f, 0}, false, {}});
+  s.joints.push_back({"head", 8, {0, 0.5f, 0}, false, {}});
+  const std::vector<int> all = breadth_first(s, {0, 1, 2, 3, 4, 5, 6, 7, 8, 9});
+  CHECK(all == std::vector<int>{0, 1, 2, 5, 8, 3, 6, 9, 4, 7});
+  CHECK(breadth_first(s, {7, 3, 6, 4}) == std::vector<int>{3, 6, 4, 7});  // a subset keeps to its levels
+
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  Pose pose(s.size());
+  pose.root_position = {0.3f, 0.9f, -0.2f};
+  std::vector<glm::vec3> expected, positions(static_cast<size_t>(s.size()));
+  std::vector<glm::quat> expected_rotations, rotations(static_cast<size_t>(s.size()));
+  for (int k = 0; k < 100; ++k) {
+    for (glm::quat& q : pose.rotations) q = glm::normalize(glm::quat(u(rng), u(rng), u(rng), u(rng)));
+    forward_kinematics(s, pose, expected, &expected_rotations);
+    for (int j : all) {
+      const size_t i = static_cast<size_t>(j);
+      const int parent = s.joints[i].parent;
+      if (parent < 0) {
+        positions[i] = pose.root_position;
+        rotations[i] = pose.rotations[i];
+      } else {
+        const size_t p = static_cast<size_t>(parent);
+        place_joint(positions[p], rotations[p], s.joints[i].offset, pose.rotations[i], positions[i], rotations[i]);
+      }
+    }
+    REQUIRE(std::memcmp(positions.data(), expected.data(), sizeof(glm::vec3) * positions.size()) == 0);
+    REQUIRE(std::memcmp(rotations.data(), expected_rotations.data(), sizeof(glm::quat) * rotations.size()) == 0);
+  }
 }
