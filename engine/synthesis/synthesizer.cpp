@@ -27,6 +27,42 @@ void chain_kinematics(const Skeleton& skeleton, const std::vector<int>& joints, 
   }
 }
 
+// chain_kinematics of two poses over the same joints, joint by joint: two independent chains in flight.
+void chain_kinematics_of_two(const Skeleton& skeleton, const std::vector<int>& joints, const Pose& pose_a,
+                             std::vector<glm::vec3>& positions_a, std::vector<glm::quat>& rotations_a,
+                             const Pose& pose_b, std::vector<glm::vec3>& positions_b, std::vector<glm::quat>& rotations_b) {
+  for (int j : joints) {
+    const size_t i = static_cast<size_t>(j);
+    const int parent = skeleton.joints[i].parent;
+    if (parent < 0) {
+      rotations_a[i] = pose_a.rotations[i];
+      positions_a[i] = pose_a.root_position;
+      rotations_b[i] = pose_b.rotations[i];
+      positions_b[i] = pose_b.root_position;
+      continue;
+    }
+    const size_t p = static_cast<size_t>(parent);
+    const glm::vec3& offset = skeleton.joints[i].offset;
+    place_joint(positions_a[p], rotations_a[p], offset, pose_a.rotations[i], positions_a[i], rotations_a[i]);
+    place_joint(positions_b[p], rotations_b[p], offset, pose_b.rotations[i], positions_b[i], rotations_b[i]);
+  }
+}
+
+// Kinematics of the locomotion's legs, per thread and joint count: read for its feet only, so no character
+// keeps them.
+struct LocomotionKinematics {
+  std::vector<glm::vec3> positions;
+  std::vector<glm::quat> rotations;
+};
+LocomotionKinematics& thread_locomotion_kinematics(size_t joints) {
+  thread_local LocomotionKinematics k;
+  if (k.positions.size() < joints) {
+    k.positions.resize(joints);
+    k.rotations.resize(joints);
+  }
+  return k;
+}
+
 // The balance optimizer's working buffers, one per thread and skeleton size (BalanceScratch keeps nothing
 // from one call to the next). A crowd's thousands of characters share their thread's, which stays in its
 // cache, instead of each carrying 6 KB of its own (built-in body) through it every frame.
@@ -139,9 +175,16 @@ void Synthesizer::stage_trajectory(const SynthesisInput& in, SynthesisState& sta
 
 void Synthesizer::stage_ik(const SynthesisInput& in, SynthesisState& state, SynthesisScratch& s, Pose& out) const {
   // The locomotion's own heel and toe speeds decide which flagged points the foot stands on. (The IK reads
-  // only the legs and their ancestors: forward kinematics of those, then of everything once solved.)
-  chain_kinematics(*skeleton_, leg_joints_, *in.locomotion, s.positions, s.rotations);
-  const FootPoints loco_feet = foot_points(*skeleton_, body_, s.positions, s.rotations);
+  // only the legs and their ancestors: forward kinematics of those, then of everything once solved.) The
+  // locomotion's legs and the blended ones are taken together.
+  LocomotionKinematics& loco = thread_locomotion_kinematics(s.positions.size());
+  if (params_.ik.enabled) {
+    chain_kinematics_of_two(*skeleton_, leg_joints_, *in.locomotion, loco.positions, loco.rotations, out, s.positions,
+                            s.rotations);
+  } else {
+    chain_kinematics(*skeleton_, leg_joints_, *in.locomotion, loco.positions, loco.rotations);
+  }
+  const FootPoints loco_feet = foot_points(*skeleton_, body_, loco.positions, loco.rotations);
   std::array<float, 2> heel_speed{0.0f, 0.0f}, toe_speed{0.0f, 0.0f};
   if (state.history > 0 && in.dt > 0.0f) {
     const glm::vec3 shift = s.locomotion_jump;  // a re-aligned stream moves every point alike
@@ -157,7 +200,6 @@ void Synthesizer::stage_ik(const SynthesisInput& in, SynthesisState& state, Synt
     chain_kinematics(*skeleton_, all_joints_, out, s.positions, s.rotations);
     return;
   }
-  chain_kinematics(*skeleton_, leg_joints_, out, s.positions, s.rotations);
   apply_foot_ik(*skeleton_, body_, params_.ik, s.pinned, in.dt, out, s.positions, s.rotations, state.feet, state.root_drop);
   chain_kinematics(*skeleton_, all_joints_, out, s.positions, s.rotations);
 }

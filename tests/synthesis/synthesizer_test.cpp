@@ -74,6 +74,15 @@ void check_kinematics_left_in_scratch(const MotionSet& set, bool keep_toes) {
     synth.step(in, state, scratch, out, &report);
     balanced += report.balanced;
     require_fresh_kinematics(synth, scratch, out, static_cast<size_t>(frame));
+    // The locomotion's feet (their speeds pick the pinned points) are those of a fresh pass too.
+    std::vector<glm::vec3> positions;
+    std::vector<glm::quat> rotations;
+    forward_kinematics(synth.skeleton(), locomotion, positions, &rotations);
+    const FootPoints feet = foot_points(synth.skeleton(), synth.body(), positions, rotations);
+    for (size_t side = 0; side < 2; ++side) {
+      REQUIRE(state.previous_locomotion_feet.heel[side] == feet.heel[side]);
+      REQUIRE(state.previous_locomotion_feet.toe[side] == feet.toe[side]);
+    }
   }
   CHECK(balanced > 45);  // most frames went through the optimizer
 }
