@@ -10,21 +10,24 @@
 namespace prep {
 namespace {
 
+// One joint of a partial forward kinematics pass: from its parent's world frame, or the pose's root.
+inline void place_listed_joint(const Skeleton& skeleton, size_t i, const Pose& pose, std::vector<glm::vec3>& positions,
+                               std::vector<glm::quat>& rotations) {
+  const int parent = skeleton.joints[i].parent;
+  if (parent < 0) {
+    rotations[i] = pose.rotations[i];
+    positions[i] = pose.root_position;
+    return;
+  }
+  const size_t p = static_cast<size_t>(parent);
+  place_joint(positions[p], rotations[p], skeleton.joints[i].offset, pose.rotations[i], positions[i], rotations[i]);
+}
+
 // Forward kinematics of the listed joints only (parents before children, each listed with its ancestors):
 // the same arithmetic as forward_kinematics.
 void chain_kinematics(const Skeleton& skeleton, const std::vector<int>& joints, const Pose& pose,
                       std::vector<glm::vec3>& positions, std::vector<glm::quat>& rotations) {
-  for (int j : joints) {
-    const size_t i = static_cast<size_t>(j);
-    const int parent = skeleton.joints[i].parent;
-    if (parent < 0) {
-      rotations[i] = pose.rotations[i];
-      positions[i] = pose.root_position;
-      continue;
-    }
-    const size_t p = static_cast<size_t>(parent);
-    place_joint(positions[p], rotations[p], skeleton.joints[i].offset, pose.rotations[i], positions[i], rotations[i]);
-  }
+  for (int j : joints) place_listed_joint(skeleton, static_cast<size_t>(j), pose, positions, rotations);
 }
 
 // chain_kinematics of two poses over the same joints, joint by joint: two independent chains in flight.
@@ -32,19 +35,8 @@ void chain_kinematics_of_two(const Skeleton& skeleton, const std::vector<int>& j
                              std::vector<glm::vec3>& positions_a, std::vector<glm::quat>& rotations_a,
                              const Pose& pose_b, std::vector<glm::vec3>& positions_b, std::vector<glm::quat>& rotations_b) {
   for (int j : joints) {
-    const size_t i = static_cast<size_t>(j);
-    const int parent = skeleton.joints[i].parent;
-    if (parent < 0) {
-      rotations_a[i] = pose_a.rotations[i];
-      positions_a[i] = pose_a.root_position;
-      rotations_b[i] = pose_b.rotations[i];
-      positions_b[i] = pose_b.root_position;
-      continue;
-    }
-    const size_t p = static_cast<size_t>(parent);
-    const glm::vec3& offset = skeleton.joints[i].offset;
-    place_joint(positions_a[p], rotations_a[p], offset, pose_a.rotations[i], positions_a[i], rotations_a[i]);
-    place_joint(positions_b[p], rotations_b[p], offset, pose_b.rotations[i], positions_b[i], rotations_b[i]);
+    place_listed_joint(skeleton, static_cast<size_t>(j), pose_a, positions_a, rotations_a);
+    place_listed_joint(skeleton, static_cast<size_t>(j), pose_b, positions_b, rotations_b);
   }
 }
 
