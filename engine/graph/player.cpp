@@ -153,15 +153,19 @@ void Player::pose_of(const Segment& s, int clip_frame, Pose& out) const {
   out.rotations[0] = glm::normalize(s.place.rotation() * out.rotations[0]);
 }
 
+size_t Player::segment_of(int frame) const {
+  const auto it = std::upper_bound(segments_.begin(), segments_.end(), frame,
+                                   [](int f, const Segment& s) { return f < s.stream_first; });
+  return static_cast<size_t>(it - segments_.begin()) - 1;
+}
+
 void Player::pose_at(int frame, Pose& out) const {
   if (segments_.empty()) {
     out = Pose();
     return;
   }
   frame = std::clamp(frame, 0, frame_count() - 1);
-  const auto it = std::upper_bound(segments_.begin(), segments_.end(), frame,
-                                   [](int f, const Segment& s) { return f < s.stream_first; });
-  const size_t index = static_cast<size_t>(it - segments_.begin()) - 1;
+  const size_t index = segment_of(frame);
   const Segment& s = segments_[index];
   const int d = frame - s.stream_first;
   pose_of(s, s.first + d, out);
@@ -192,9 +196,7 @@ void Player::sample(float t, Pose& out) const {
 bool Player::sample_within_segment(int i0, float w, Pose& out) const {
   if (segments_.empty()) return false;
   const int f0 = std::clamp(i0, 0, frame_count() - 1), f1 = std::clamp(i0 + 1, 0, frame_count() - 1);
-  const auto it = std::upper_bound(segments_.begin(), segments_.end(), f0,
-                                   [](int f, const Segment& s) { return f < s.stream_first; });
-  const size_t index = static_cast<size_t>(it - segments_.begin()) - 1;
+  const size_t index = segment_of(f0);
   const Segment& s = segments_[index];
   const int d0 = f0 - s.stream_first;
   if (d0 < s.blend && index > 0) return false;                                                // cross-fading

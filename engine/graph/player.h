@@ -71,6 +71,7 @@ class Player {
   int choose_edge(const Segment& s, const PlayerAction& action, bool* wrap_first) const;
   void follow(int edge);
   void pose_of(const Segment& s, int clip_frame, Pose& out) const;
+  size_t segment_of(int frame) const;  // the segment playing stream frame `frame` (segments_ not empty, frame >= 0)
   // sample() when stream frames i0 and i0 + 1 lie in one segment past its cross-fade, read from the clip
   // in place; false (nothing written) otherwise.
   bool sample_within_segment(int i0, float w, Pose& out) const;
