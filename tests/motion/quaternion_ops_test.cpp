@@ -2,19 +2,13 @@
 
 #include <doctest/doctest.h>
 
-#include <cstring>
 #include <random>
+
+#include "tests/support/bits.h"
 
 using namespace prep;
 
-namespace {
-
-template <typename T>
-bool same_bits(const T& a, const T& b) {
-  return std::memcmp(&a, &b, sizeof(T)) == 0;
-}
-
-}  // namespace
+using test::same_bits;
 
 TEST_CASE("quaternion ops: product, rotation and normalization are glm's to the bit") {
   // Unit quaternions as the engine keeps them, unnormalized ones (products before normalize), tiny and

@@ -3,17 +3,13 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
-#include <cstring>
 #include <random>
+
+#include "tests/support/bits.h"
 
 using namespace prep;
 
-namespace {
-
-bool same_bits(const glm::vec3& a, const glm::vec3& b) { return std::memcmp(&a, &b, sizeof a) == 0; }
-bool same_bits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
-
-}  // namespace
+using test::same_bits;
 
 TEST_CASE("vector ops: sums, products, crosses, dots, lengths, normalization and rotations in a register are glm's to the bit") {
   // Magnitudes from 1e-6 to 1e2 and mixed signs, so that a reordered sum (say x + (y + z) for a dot
