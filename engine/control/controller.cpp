@@ -6,6 +6,8 @@
 
 #include <algorithm>
 
+#include "engine/util/prefetch.h"
+
 namespace prep {
 
 AlphaFilter::AlphaFilter(float sigma_s, float dt) {
@@ -126,6 +128,17 @@ std::shared_ptr<const Policy> ControllerBank::for_curve(const RootCurve& curve) 
   for (const auto& p : policies_)
     if (p->table.curve == curve) return p;
   return nullptr;
+}
+
+void AlphaFilter::prefetch() const {
+  prefetch_vector(weights_);
+  prefetch_vector(weight_sums_);
+  prefetch_vector(history_);
+}
+
+void Controller::prefetch(int level) const {
+  if (level == 0) prefetch_object(*this);
+  if (level == 1) filter_.prefetch();
 }
 
 }  // namespace prep

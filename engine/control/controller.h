@@ -41,6 +41,7 @@ class AlphaFilter {
   void reset(float alpha);     // history filled with alpha
   float push(float alpha);     // records one tick's chosen alpha, returns the filtered alpha
   float value() const { return value_; }
+  void prefetch() const;  // asks the processor for the memory the next push() reads (its buffers)
   int taps() const { return static_cast<int>(weights_.size()); }
 
  private:
@@ -89,6 +90,9 @@ class Controller {
   // top level until set_arrived(false).
   void set_arrived(bool arrived);
   bool arrived() const { return arrived_; }
+  // Asks the processor for the memory the next decision or alpha step reads: level 0 the controller, 1 its
+  // filter's buffers (World::prefetch).
+  void prefetch(int level) const;
 
   void reset(int motion, int alpha_level);  // also ends an arrival; the filter restarts at that level
   int motion() const { return motion_; }

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "engine/motion/slerp.h"
+#include "engine/util/prefetch.h"
 
 namespace prep {
 
@@ -217,6 +218,14 @@ bool Player::sample_within_segment(int i0, float w, Pose& out) const {
   out.rotations[0] = slerp_shorter(glm::normalize(place * a.rotations[0]), glm::normalize(place * b.rotations[0]), w);
   slerp_shorter(a.rotations.data() + 1, b.rotations.data() + 1, w, out.rotations.data() + 1, n - 1);
   return true;
+}
+
+void Player::prefetch(int level) const {
+  if (level == 0) prefetch_object(*this);
+  if (level == 1) prefetch_vector(segments_);
+  // The frame playing lies in one of the last two segments (the open one, or the one it cross-fades from).
+  if (level == 2)
+    for (size_t k = segments_.size() >= 2 ? segments_.size() - 2 : 0; k < segments_.size(); ++k) prefetch_vector(segments_[k].blend_sign);
 }
 
 }  // namespace prep

@@ -53,6 +53,9 @@ class Player {
     int edge = -1;  // index into the graph's edges
   };
   const std::vector<Switch>& switches() const { return switches_; }
+  // Asks the processor for the memory the next sample() reads, one level of pointers at a time
+  // (World::prefetch): 0 the player itself, 1 its segments, 2 the last two segments' sign tables.
+  void prefetch(int level) const;
 
  private:
   struct Segment {

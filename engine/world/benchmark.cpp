@@ -174,6 +174,7 @@ CrowdBenchmark benchmark_crowd(const Scenario& scenario, std::shared_ptr<const W
   auto step_block = [&](size_t lo, size_t hi, int block, bool count) {
     long run_synthesized = 0, run_balanced = 0;  // summed here, so the threads' counters (neighbours in
     for (size_t i = lo; i < hi; ++i) {           // memory) are written once per run, not per world
+      prefetch_ahead(worlds, i, hi);
       worlds[i]->step();
       if (count)
         for (const WorldCharacter& c : worlds[i]->characters()) {

@@ -48,7 +48,10 @@ Crowd::Crowd(const Scenario& lane, std::shared_ptr<const WorldAssets> assets, co
   fill_entry_frames(*assets_, workers_);
   for (int i = 0; i < n; ++i) worlds_.push_back(make_lane(i));
   step_lanes_ = [this](size_t first, size_t last, int) {
-    for (size_t i = first; i < last; ++i) worlds_[i]->step();
+    for (size_t i = first; i < last; ++i) {
+      prefetch_ahead(worlds_, i, last);
+      worlds_[i]->step();
+    }
   };
 }
 

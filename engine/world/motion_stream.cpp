@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "engine/graph/player.h"
+#include "engine/util/prefetch.h"
 
 namespace prep {
 
@@ -112,5 +113,13 @@ FrameContacts MotionStream::contacts() const {
 }
 
 int MotionStream::queued_node() const { return pieces_.back().node; }
+
+void MotionStream::prefetch(int level) const {
+  if (level == 0) {
+    prefetch_vector(pieces_);
+    prefetch_vector(pose_.rotations);
+  }
+  player_->prefetch(level);
+}
 
 }  // namespace prep

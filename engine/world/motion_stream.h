@@ -49,6 +49,9 @@ class MotionStream {
   bool has_ahead(float seconds) const;
 
   void advance(float dt);  // moves the time on and samples the pose there
+  // Asks the processor for the memory the next tick reads, one level of pointers at a time
+  // (World::prefetch): 0 what the stream points to, 1 and on the player's levels 0 and on.
+  void prefetch(int level) const;
   float time() const { return time_; }
   const Pose& pose() const { return pose_; }
   FrameContacts contacts() const;  // of the clip frame playing now (the incoming clip during a blend)

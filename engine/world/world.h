@@ -320,6 +320,13 @@ class World {
   World& operator=(const World&) = delete;
 
   void step();                  // one tick of assets().params.runtime.fixed_dt
+  // Asks the processor for the memory the next step() reads, so that a caller stepping many worlds
+  // overlaps one world's memory traffic with another's work (util/prefetch.h). The memory is a tree of
+  // pointers; each level is what the level before points to: level 0 the world itself, then its arrays,
+  // then the characters' state, and so on to kPrefetchLevels - 1. Level L of a world is asked for when
+  // level L - 1 has had time to arrive (prefetch_ahead), so no level waits on a miss.
+  static constexpr int kPrefetchLevels = 6;
+  void prefetch(int level) const;
   void run(float seconds);      // ticks until `seconds` more have passed
   float time() const { return time_; }
   int ticks() const { return ticks_; }
@@ -484,6 +491,10 @@ class World {
   std::unique_ptr<ArrivalModel> arrival_;  // from the policy's table and the runtime Params
   float walking_turn_rate_ = 0.0f;          // rad/s: the policy's fastest level-0 turn (steering.h)
 };
+
+// Before stepping worlds[i] of a run of worlds[0 .. end): asks for level L of worlds[i + kPrefetchLevels - L],
+// so that each world's memory has arrived, level by level, by the time its turn comes (World::prefetch).
+void prefetch_ahead(const std::vector<std::unique_ptr<World>>& worlds, size_t i, size_t end);
 
 // A headless run: the scenario for `seconds`, launches and goal (what `prep run` and `prep-demo --json` print).
 struct RunSummary {

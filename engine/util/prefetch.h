@@ -1,0 +1,44 @@
+// Hints to the processor that memory is about to be read: each cache line of a range is requested ahead,
+// so that a later pass over it finds it in cache. Pure hints: no value changes, and an address is never
+// dereferenced by the hint itself.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace prep {
+
+constexpr std::size_t kCacheLine = 64;
+
+// The cache lines a range of `bytes` bytes from `data` touches: `count` lines from the one holding its
+// first byte.
+struct CacheLines {
+  std::uintptr_t first = 0;
+  std::size_t count = 0;
+};
+inline CacheLines cache_lines(const void* data, std::size_t bytes) {
+  if (bytes == 0) return {};
+  const std::uintptr_t begin = reinterpret_cast<std::uintptr_t>(data);
+  const std::uintptr_t first = begin & ~static_cast<std::uintptr_t>(kCacheLine - 1);
+  const std::uintptr_t last = (begin + bytes - 1) & ~static_cast<std::uintptr_t>(kCacheLine - 1);
+  return {first, (last - first) / kCacheLine + 1};
+}
+
+// GCC counts __builtin_prefetch as free of side effects: a function made only of them is found to be
+// `const`, and calls to it, returning nothing, are dropped as dead. The empty volatile asm is a side
+// effect the optimizer must keep, and with it the prefetches.
+inline void prefetch_range(const void* data, std::size_t bytes) {
+  const CacheLines lines = cache_lines(data, bytes);
+  const char* line = static_cast<const char*>(data) - (reinterpret_cast<std::uintptr_t>(data) - lines.first);
+  for (std::size_t k = 0; k < lines.count; ++k, line += kCacheLine) __builtin_prefetch(line);
+  asm volatile("");
+}
+
+template <class T>
+inline void prefetch_object(const T& object) { prefetch_range(&object, sizeof(T)); }
+
+template <class T>
+inline void prefetch_vector(const std::vector<T>& v) { prefetch_range(v.data(), v.size() * sizeof(T)); }
+
+}  // namespace prep
