@@ -4,7 +4,6 @@
 #include "engine/util/prefetch.h"
 
 #include "engine/control/arrival.h"
-#include "engine/motion/body_volumes.h"
 #include "engine/world/world.h"
 #include "engine/world/world_runtime.h"
 
@@ -19,7 +18,6 @@ void World::prefetch(int level) const {
       prefetch_vector(characters_);
       prefetch_vector(objects_);
       prefetch_vector(runtime_);
-      prefetch_object(*volumes_);
       prefetch_object(*arrival_);
       break;
     case 2:
@@ -28,13 +26,13 @@ void World::prefetch(int level) const {
         prefetch_vector(c.support.hull);
       }
       for (const auto& rt : runtime_) prefetch_object(*rt);
-      prefetch_vector(volumes_->capsules());
       break;
     case 3:
       for (const auto& r : runtime_) {
         const Runtime& rt = *r;
         for (const auto* v : {&rt.scratch.positions, &rt.positions, &rt.centroids}) prefetch_vector(*v);
-        for (const auto* v : {&rt.scratch.rotations, &rt.out.rotations, &rt.fade_from.rotations, &rt.rotations}) prefetch_vector(*v);
+        for (const auto* v : {&rt.scratch.rotations, &rt.out.rotations, &rt.rotations}) prefetch_vector(*v);
+        if (rt.fade_left > 0.0f) prefetch_vector(rt.fade_from.rotations);  // read only while a cross-fade lasts
         prefetch_vector(rt.scratch.weights);
         prefetch_vector(rt.scratch.style);
         prefetch_vector(rt.scratch.support.hull);

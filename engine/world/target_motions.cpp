@@ -283,7 +283,8 @@ WorldAssets make_world_assets(std::shared_ptr<const MotionSet> set, const Params
   a.targets.resize(kTargetActionCount);
   a.sweeps.resize(kTargetActionCount);
   a.body_reaches.resize(kTargetActionCount);
-  const BodyVolumes volumes(*set->skeleton);
+  a.volumes = std::make_shared<const BodyVolumes>(*set->skeleton);
+  const BodyVolumes& volumes = *a.volumes;
   for (int k = 0; k < kTargetActionCount; ++k) {
     TargetMotion& t = a.targets[static_cast<size_t>(k)];
     t.action = static_cast<TargetAction>(k);

@@ -60,7 +60,7 @@ World::World(const Scenario& scenario, std::shared_ptr<const WorldAssets> assets
   if (scenario_.user() < 0) throw std::invalid_argument("world: the scenario has no user character");
   arrival_ = std::make_unique<ArrivalModel>(policy_->table, policy_->quantization.alpha_step, params_.runtime);
   walking_turn_rate_ = fastest_level0_turn(policy_->table);
-  volumes_ = std::make_unique<BodyVolumes>(*assets_->set->skeleton);
+  volumes_ = assets_->volumes;
 
   auto add_character = [&](glm::vec2 position, float heading, Control control, TargetAction met_with, int object) {
     WorldCharacter c;
@@ -133,7 +133,7 @@ void World::set_policy(std::shared_ptr<const Policy> policy) {
   policy_ = std::move(policy);
   arrival_ = std::make_unique<ArrivalModel>(policy_->table, policy_->quantization.alpha_step, params_.runtime);
   walking_turn_rate_ = fastest_level0_turn(policy_->table);
-  volumes_ = std::make_unique<BodyVolumes>(*assets_->set->skeleton);
+  volumes_ = assets_->volumes;
   for (size_t i = 0; i < runtime_.size(); ++i) {
     const int motion = runtime_[i]->controller->motion(), level = runtime_[i]->controller->alpha_level();
     runtime_[i]->controller = std::make_unique<Controller>(policy_, params_);

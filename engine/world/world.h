@@ -99,6 +99,7 @@
 
 namespace prep {
 
+class BodyVolumes;
 class MotionStream;
 
 constexpr int kTargetActionCount = 6;
@@ -174,6 +175,9 @@ struct WorldAssets {
   // may leave it (its release frame, else its end), by height (obstacle_fit.h).
   std::vector<BodyReach> body_reaches;
   std::vector<int> core_nodes;         // graph node of each policy core motion (index = policy motion)
+  // The skeleton's body capsules (keep_clear_of_obstacles): one table for all worlds, so that a crowd
+  // reads it from cache instead of each world its own copy.
+  std::shared_ptr<const BodyVolumes> volumes;
   int idle_node = -1;                  // where characters start and stop (the idle core clip, else walk)
   std::shared_ptr<const Policy> policy;
 
@@ -474,7 +478,7 @@ class World {
   std::vector<WorldCharacter> characters_;
   std::vector<WorldObject> objects_;
   std::vector<std::vector<ObjectSolid>> solids_;  // per object, in its own frame (object_solids.h)
-  std::unique_ptr<BodyVolumes> volumes_;           // the bodies' capsules (keep_clear_of_obstacles)
+  std::shared_ptr<const BodyVolumes> volumes_;     // the bodies' capsules (WorldAssets::volumes)
   int decisions_held_ = 0;  // steps left without decisions (hold_decisions)
   std::vector<glm::vec2> shove_, body_low_, body_high_;  // keep_apart's and keep_bodies_apart's scratch
   std::vector<char> body_placed_;
