@@ -160,6 +160,15 @@ size_t Player::segment_of(int frame) const {
   return static_cast<size_t>(it - segments_.begin()) - 1;
 }
 
+void Player::forget_before(int frame) {
+  if (segments_.size() < 3 || frame < segments_[2].stream_first) return;
+  const size_t keep_from = segment_of(frame) - 1;
+  const int first_kept = segments_[keep_from].stream_first;
+  segments_.erase(segments_.begin(), segments_.begin() + static_cast<std::ptrdiff_t>(keep_from));
+  const auto played = std::find_if(switches_.begin(), switches_.end(), [&](const Switch& s) { return s.stream_frame >= first_kept; });
+  switches_.erase(switches_.begin(), played);
+}
+
 void Player::pose_at(int frame, Pose& out) const {
   if (segments_.empty()) {
     out = Pose();

@@ -43,6 +43,7 @@ class Player {
   float duration() const;
 
   // The pose at stream frame `frame` (clamped), in world space, and at time t (seconds, interpolated).
+  // After forget_before(f), frames before f may be read only while they lie in a segment still held.
   void pose_at(int frame, Pose& out) const;
   void sample(float t, Pose& out) const;
 
@@ -53,6 +54,12 @@ class Player {
     int edge = -1;  // index into the graph's edges
   };
   const std::vector<Switch>& switches() const { return switches_; }
+  // Lets go of what no frame from `frame` on reads: the segments before the one playing `frame`, except
+  // the one just before it (a cross-fade at the start of a segment reads its predecessor), and their
+  // switches. A stream that plays on (a walk looping for minutes) then holds a few segments, not one per
+  // cycle, and move() costs the same at any age. Frame numbers and every pose read later are unchanged.
+  void forget_before(int frame);
+  int segment_count() const { return static_cast<int>(segments_.size()); }
   // Asks the processor for the memory the next sample() reads, one level of pointers at a time
   // (World::prefetch): 0 the player itself, 1 its segments, 2 the last two segments' sign tables.
   void prefetch(int level) const;

@@ -86,7 +86,19 @@ bool MotionStream::has_ahead(float seconds) const { return player_->duration() -
 
 void MotionStream::advance(float dt) {
   time_ += dt;
+  forget_played();
   sample();
+}
+
+void MotionStream::forget_played() {
+  // Time only moves on (start and switch_to begin a new stream): no frame before the one playing is read
+  // again, but the pair sampled starts at floor(frame), and node() / clip_frame() round.
+  const int frame = static_cast<int>(std::floor(std::max(0.0f, time_ * player_->fps())));
+  player_->forget_before(frame);
+  if (pieces_.size() >= 3 && frame >= pieces_[2].stream_first) {
+    const Piece* playing = &piece_at(frame);
+    pieces_.erase(pieces_.begin(), pieces_.begin() + (playing - pieces_.data()));
+  }
 }
 
 void MotionStream::sample() { player_->sample(time_, pose_); }

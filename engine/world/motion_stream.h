@@ -67,6 +67,7 @@ class MotionStream {
   };
   const Piece& piece_at(int stream_frame) const;
   void sample();
+  void forget_played();  // lets go of the pieces and player segments behind the time playing
 
   const MotionGraph* graph_;
   std::unique_ptr<Player> player_;

@@ -135,3 +135,50 @@ TEST_CASE("player: sampling between two frames is the interpolation of the frame
     }
   }
 }
+
+TEST_CASE("player: letting go of what played keeps a few segments and changes no pose") {
+  // Two players, the same actions: one forgets what lies behind the time sampled (as a character's stream
+  // does every tick), the other keeps everything. Their poses agree to the bit at every tick, moved on the
+  // floor along the way, across loop wraps, switches and cross-fades; the forgetful one holds at most a
+  // few segments and switches.
+  const MotionGraph g = MotionGraph::build(builtin(), Params().graph);
+  const int walk = g.find("walk"), idle = g.find("idle");
+  REQUIRE(walk >= 0);
+  REQUIRE(idle >= 0);
+  // Each action is queued once the one before has begun, as the world queues them.
+  Player keeping(g), forgetting(g);
+  for (Player* p : {&keeping, &forgetting}) p->start(walk, -1, FloorTransform{0.3f, glm::vec2(-1.0f, 2.0f)});
+  int queued = 0;
+  const FloorTransform nudge{0.002f, glm::vec2(0.001f, -0.0005f)};
+  Pose kept, forgot;
+  int largest = 0, faded_ticks = 0;
+  const float dt = 1.0f / 60.0f;
+  for (int tick = 0; queued < 40 || static_cast<float>(tick) * dt < keeping.duration() - dt; ++tick) {
+    const float t = static_cast<float>(tick) * dt;
+    const int frame = static_cast<int>(std::floor(t * keeping.fps()));
+    if (queued < 40 && (keeping.switches().empty() || frame >= keeping.switches().back().stream_frame)) {
+      for (Player* p : {&keeping, &forgetting}) p->push(queued % 10 == 9 ? idle : walk);
+      ++queued;
+    }
+    forgetting.forget_before(frame);
+    if (tick % 7 == 0) {
+      keeping.move(nudge);
+      forgetting.move(nudge);
+    }
+    keeping.sample(t, kept);
+    forgetting.sample(t, forgot);
+    CAPTURE(tick);
+    REQUIRE(std::memcmp(&kept.root_position, &forgot.root_position, sizeof(glm::vec3)) == 0);
+    REQUIRE(std::memcmp(kept.rotations.data(), forgot.rotations.data(), sizeof(glm::quat) * kept.rotations.size()) == 0);
+    largest = std::max(largest, forgetting.segment_count());
+    for (const Player::Switch& s : keeping.switches()) {
+      const int f = static_cast<int>(std::floor(t * keeping.fps()));
+      faded_ticks += s.blend_frames > 0 && f >= s.stream_frame && f < s.stream_frame + s.blend_frames;
+    }
+  }
+  REQUIRE(keeping.segment_count() > 40);
+  CHECK(faded_ticks > 0);  // cross-fades were sampled after their predecessors' predecessors were let go
+  CHECK(largest <= 4);
+  CHECK(forgetting.switches().size() <= 4);
+  CHECK(forgetting.frame_count() == keeping.frame_count());
+}
