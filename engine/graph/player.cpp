@@ -232,9 +232,8 @@ bool Player::sample_within_segment(int i0, float w, Pose& out) const {
 void Player::prefetch(int level) const {
   if (level == 0) prefetch_object(*this);
   if (level == 1) prefetch_vector(segments_);
-  // The frame playing lies in one of the last two segments (the open one, or the one it cross-fades from).
-  if (level == 2)
-    for (size_t k = segments_.size() >= 2 ? segments_.size() - 2 : 0; k < segments_.size(); ++k) prefetch_vector(segments_[k].blend_sign);
+  if (level == 2)  // a stream holds only a few segments (forget_before)
+    for (const Segment& s : segments_) prefetch_vector(s.blend_sign);
 }
 
 }  // namespace prep

@@ -61,7 +61,7 @@ class Player {
   void forget_before(int frame);
   int segment_count() const { return static_cast<int>(segments_.size()); }
   // Asks the processor for the memory the next sample() reads, one level of pointers at a time
-  // (World::prefetch): 0 the player itself, 1 its segments, 2 the last two segments' sign tables.
+  // (World::prefetch): 0 the player itself, 1 its segments, 2 their sign tables.
   void prefetch(int level) const;
 
  private:

@@ -30,8 +30,7 @@ inline CacheLines cache_lines(const void* data, std::size_t bytes) {
 // effect the optimizer must keep, and with it the prefetches.
 inline void prefetch_range(const void* data, std::size_t bytes) {
   const CacheLines lines = cache_lines(data, bytes);
-  const char* line = static_cast<const char*>(data) - (reinterpret_cast<std::uintptr_t>(data) - lines.first);
-  for (std::size_t k = 0; k < lines.count; ++k, line += kCacheLine) __builtin_prefetch(line);
+  for (std::size_t k = 0; k < lines.count; ++k) __builtin_prefetch(reinterpret_cast<const void*>(lines.first + k * kCacheLine));
   asm volatile("");
 }
 
