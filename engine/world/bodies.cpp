@@ -149,14 +149,16 @@ void World::keep_clear_of_obstacles(int index) {
     // or leg, a post) is left sooner to its side: a step that along n would leave the body in goes along
     // the obstacle's width instead where that leaves it clear.
     const ObjectFrame frame(at, o.spec.heading);
+    // The capsules in the object's frame: the thread's buffer, warm in its cache, not one per character.
+    thread_local std::vector<PlacedCapsule> framed;
     // The body's box in the object's frame first: a solid apart from it along one axis has no capsule in it.
     const auto depth_at = [&](glm::vec2 offset) {
       const glm::vec3 moved(offset.x, 0.0f, offset.y);
-      rt.framed.resize(rt.capsules.size());
+      framed.resize(rt.capsules.size());
       glm::vec3 low(std::numeric_limits<float>::infinity()), high(-std::numeric_limits<float>::infinity());
       for (size_t i = 0; i < rt.capsules.size(); ++i) {
         const PlacedCapsule& capsule = rt.capsules[i];
-        PlacedCapsule& f = rt.framed[i];
+        PlacedCapsule& f = framed[i];
         f = {frame.to_local(capsule.a + moved), frame.to_local(capsule.b + moved), capsule.radius};
         low = glm::min(low, glm::min(f.a, f.b) - f.radius);
         high = glm::max(high, glm::max(f.a, f.b) + f.radius);
@@ -166,7 +168,7 @@ void World::keep_clear_of_obstacles(int index) {
         if (ends_only && s.part != SolidPart::Post && s.part != SolidPart::Leg && s.part != SolidPart::Foot) continue;
         const glm::vec3 half = s.sphere ? glm::vec3(0.5f * s.extents.x) : 0.5f * s.extents;
         if (glm::any(glm::greaterThan(low - s.centre, half)) || glm::any(glm::lessThan(high - s.centre, -half))) continue;
-        for (const PlacedCapsule& f : rt.framed) depth = std::max(depth, framed_capsule_solid_depth(f, s));
+        for (const PlacedCapsule& f : framed) depth = std::max(depth, framed_capsule_solid_depth(f, s));
       }
       return depth;
     };

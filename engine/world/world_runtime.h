@@ -70,7 +70,6 @@ struct World::Runtime {
   std::vector<glm::vec3> positions, centroids;
   std::vector<glm::quat> rotations;
   std::vector<PlacedCapsule> capsules;  // the body this frame (World::keep_clear_of_obstacles)
-  std::vector<PlacedCapsule> framed;    // ... in an object's frame
 };
 
 }  // namespace prep
