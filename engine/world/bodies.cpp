@@ -267,8 +267,9 @@ void World::place_body(int index, glm::vec2& low, glm::vec2& high) {
   if (rt.kinematics_of_pose) {
     volumes_->place(rt.scratch.positions, rt.scratch.rotations, rt.capsules);
   } else {
-    forward_kinematics(*assets_->set->skeleton, c.pose, rt.positions, &rt.rotations);
-    volumes_->place(rt.positions, rt.rotations, rt.capsules);
+    CallScratch& k = call_scratch();
+    forward_kinematics(*assets_->set->skeleton, c.pose, k.positions, &k.rotations);
+    volumes_->place(k.positions, k.rotations, rt.capsules);
   }
   low = glm::vec2(std::numeric_limits<float>::infinity());
   high = -low;
@@ -314,7 +315,8 @@ void World::fit_pose(int index, Pose& pose) {
   const float lift = rt.fit.lift * rt.fit.weight(static_cast<float>(rt.stream.clip_frame()));
   if (lift == 0.0f) return;
   const MotionSet& set = *assets_->set;
-  forward_kinematics(*set.skeleton, pose, rt.positions, &rt.rotations);
+  CallScratch& k = call_scratch();
+  forward_kinematics(*set.skeleton, pose, k.positions, &k.rotations);
   const FrameContacts contacts = rt.stream.contacts();
   pose.root_position.y += lift;
   const glm::vec3 forward = pose.rotations[0] * glm::vec3(0.0f, 0.0f, 1.0f);
@@ -322,7 +324,7 @@ void World::fit_pose(int index, Pose& pose) {
     if (lift > 0.0f && !contacts[static_cast<size_t>(side)].any()) continue;
     const LegChain& leg = set.body.legs[static_cast<size_t>(side)];
     const size_t ankle = static_cast<size_t>(leg.ankle);
-    solve_leg(*set.skeleton, leg, params_.ik, pose, rt.positions, rt.rotations, rt.positions[ankle], rt.rotations[ankle],
+    solve_leg(*set.skeleton, leg, params_.ik, pose, k.positions, k.rotations, k.positions[ankle], k.rotations[ankle],
               forward, glm::vec3(0.0f, lift, 0.0f));
   }
 }

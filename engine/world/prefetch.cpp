@@ -30,8 +30,8 @@ void World::prefetch(int level) const {
     case 3:
       for (const auto& r : runtime_) {
         const Runtime& rt = *r;
-        for (const auto* v : {&rt.scratch.positions, &rt.positions, &rt.centroids}) prefetch_vector(*v);
-        for (const auto* v : {&rt.scratch.rotations, &rt.out.rotations, &rt.rotations}) prefetch_vector(*v);
+        prefetch_vector(rt.scratch.positions);
+        for (const auto* v : {&rt.scratch.rotations, &rt.out.rotations}) prefetch_vector(*v);
         if (rt.fade_left > 0.0f) prefetch_vector(rt.fade_from.rotations);  // read only while a cross-fade lasts
         prefetch_vector(rt.scratch.weights);
         prefetch_vector(rt.scratch.style);

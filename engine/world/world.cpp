@@ -542,8 +542,9 @@ void World::steer_tightly(int index) {
       const MotionSet& set = *assets_->set;
       glm::vec2 pivot = floor_xz(root) + move.offset;
       if (left != right) {
-        forward_kinematics(*set.skeleton, rt.stream.pose(), rt.positions);
-        const glm::vec3 ankle = rt.positions[static_cast<size_t>(set.body.legs[left ? kLeft : kRight].ankle)];
+        std::vector<glm::vec3>& positions = call_scratch().positions;
+        forward_kinematics(*set.skeleton, rt.stream.pose(), positions);
+        const glm::vec3 ankle = positions[static_cast<size_t>(set.body.legs[left ? kLeft : kRight].ankle)];
         pivot = floor_xz(ankle) + move.offset;
       } else {
         turn.rate /= 3.0f;
@@ -585,14 +586,15 @@ void World::update_balance(int index, bool kinematics_in_scratch) {
   if (!kinematics_in_scratch) forward_kinematics(*set.skeleton, c.pose, rt.scratch.positions, &rt.scratch.rotations);
   const std::vector<glm::vec3>& positions = rt.scratch.positions;
   const std::vector<glm::quat>& rotations = rt.scratch.rotations;
+  std::vector<glm::vec3>& centroids = call_scratch().centroids;
   if (kinematics_in_scratch && rt.scratch.support_of_output) {
     // The pose is the synthesizer's output as it left it: its body-part centroids (one per mass segment,
     // in the same order, by the same arithmetic) are those it keeps for the next frame's smoothness term.
-    rt.centroids.assign(rt.synthesis.previous.begin(), rt.synthesis.previous.begin() + static_cast<long>(set.mass.segments.size()));
+    centroids.assign(rt.synthesis.previous.begin(), rt.synthesis.previous.begin() + static_cast<long>(set.mass.segments.size()));
   } else {
-    segment_centroids(*set.skeleton, set.mass, positions, rotations, rt.centroids);
+    segment_centroids(*set.skeleton, set.mass, positions, rotations, centroids);
   }
-  c.com = center_of_mass(set.mass, rt.centroids);
+  c.com = center_of_mass(set.mass, centroids);
   c.contacts = rt.stream.contacts();
   if (kinematics_in_scratch && rt.scratch.support_of_output) {
     c.support = rt.scratch.support;  // the synthesizer's: the same feet, the same contacts

@@ -17,6 +17,18 @@
 
 namespace prep {
 
+// Joint positions and rotations and body-part centroids that a world's call works out and uses at once,
+// never kept from one call to the next: the calling thread's buffers, warm in its cache, rather than
+// each character's.
+struct CallScratch {
+  std::vector<glm::vec3> positions, centroids;
+  std::vector<glm::quat> rotations;
+};
+inline CallScratch& call_scratch() {
+  thread_local CallScratch scratch;
+  return scratch;
+}
+
 struct World::Runtime {
   explicit Runtime(const MotionGraph& graph) : stream(graph) {}
   MotionStream stream;
@@ -67,8 +79,6 @@ struct World::Runtime {
   bool room_from_front = false;
   std::vector<float> room_short;  // m of room each place lacks (<= 0: enough)
   bool room_moved = false;        // the launch place is not the character's own for want of room
-  std::vector<glm::vec3> positions, centroids;
-  std::vector<glm::quat> rotations;
   std::vector<PlacedCapsule> capsules;  // the body this frame (World::keep_clear_of_obstacles)
 };
 
