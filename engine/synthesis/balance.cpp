@@ -47,7 +47,7 @@ void BalanceScratch::resize(int joints, int parts) {
   subtree_mass.resize(n);
   rotations.resize(n);
   trial_rotations.resize(n);
-  for (auto* v : {&centroids, &trial_centroids, &start_centroids, &part_gradient}) v->resize(m);
+  for (auto* v : {&centroids, &trial_centroids, &start_centroids, &style, &part_gradient}) v->resize(m);
   for (auto* v : {&base, &local, &trial_local, &offset}) v->resize(static_cast<size_t>(kMaxOptimizedJoints));
 }
 

@@ -66,6 +66,7 @@ struct BalanceScratch {
   std::vector<glm::quat> rotations, trial_rotations;  // joint world rotations
   std::vector<glm::vec3> centroids, trial_centroids;  // body-part centroids
   std::vector<glm::vec3> start_centroids;             // centroids where this frame's descent started
+  std::vector<glm::vec3> style;                       // the blended posture's centroids (Eq. 7's targets)
   std::vector<glm::vec3> part_gradient;               // dC/d(centroid)
   std::vector<glm::vec3> joint_point_gradient;        // dC/d(joint position)
   std::vector<glm::vec3> end_point_gradient;          // dC/d(End Site position)

@@ -129,7 +129,6 @@ SynthesisScratch Synthesizer::make_scratch() const {
   s.weights.resize(n);
   s.positions.resize(n);
   s.rotations.resize(n);
-  s.style.resize(balance_model_.parts.size());
   s.support.hull.reserve(16);
   return s;
 }
@@ -202,10 +201,11 @@ void Synthesizer::stage_balance(const SynthesisInput& in, SynthesisState& state,
   const FootPoints feet = foot_points(*skeleton_, body_, s.positions, s.rotations);
   support_polygon(feet, in.contacts, params_.contacts, s.support);
   const size_t n_parts = balance_model_.parts.size();
-  part_centroids(*skeleton_, balance_model_, s.positions, s.rotations, s.style.data());
+  BalanceScratch& b = thread_balance_scratch(skeleton_->size(), static_cast<int>(n_parts));
+  part_centroids(*skeleton_, balance_model_, s.positions, s.rotations, b.style.data());
 
   BalanceTargets targets;
-  targets.style = s.style.data();
+  targets.style = b.style.data();
   if (state.history >= 2) {
     targets.previous = state.previous.data();
     targets.before_previous = state.before_previous.data();
@@ -216,9 +216,8 @@ void Synthesizer::stage_balance(const SynthesisInput& in, SynthesisState& state,
   const bool optimize = bp.enabled && has_support && in.alpha >= bp.alpha_threshold && bp.max_steps > 0;
 
   BalanceResult result;
-  const glm::vec3* final_centroids = s.style.data();
+  const glm::vec3* final_centroids = b.style.data();
   if (optimize) {
-    BalanceScratch& b = thread_balance_scratch(skeleton_->size(), static_cast<int>(n_parts));
     b.positions = s.positions;  // the IK stage's forward kinematics of `out` (same sizes: no allocation)
     b.rotations = s.rotations;
     result = optimize_balance(*skeleton_, balance_model_, bp, targets, out, b, &state.correction, in.dt, true);
@@ -243,7 +242,7 @@ void Synthesizer::stage_balance(const SynthesisInput& in, SynthesisState& state,
     report->feet = feet;
     report->pinned = s.pinned;
     if (has_support) {
-      const glm::vec3 before = model_center_of_mass(balance_model_, s.style.data());
+      const glm::vec3 before = model_center_of_mass(balance_model_, b.style.data());
       report->com_inside_before = s.support.contains({before.x, before.z});
       if (optimize) {
         const glm::vec3 after = model_center_of_mass(balance_model_, final_centroids);

@@ -87,7 +87,6 @@ struct SynthesisScratch {
   std::uint64_t weights_curves = 0;
   std::vector<glm::vec3> positions;
   std::vector<glm::quat> rotations;
-  std::vector<glm::vec3> style;  // centroids of the posture before optimization
   FrameContacts pinned{};
   glm::vec3 locomotion_jump{0.0f};  // how far the locomotion stream was moved this frame beyond its displacement
   SupportPolygon support;

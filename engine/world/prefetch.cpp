@@ -34,7 +34,6 @@ void World::prefetch(int level) const {
         for (const auto* v : {&rt.scratch.rotations, &rt.out.rotations}) prefetch_vector(*v);
         if (rt.fade_left > 0.0f) prefetch_vector(rt.fade_from.rotations);  // read only while a cross-fade lasts
         prefetch_vector(rt.scratch.weights);
-        prefetch_vector(rt.scratch.style);
         prefetch_vector(rt.scratch.support.hull);
         prefetch_vector(rt.capsules);
         rt.stream.prefetch(0);
