@@ -157,7 +157,8 @@ void Player::pose_of(const Segment& s, int clip_frame, Pose& out) const {
 size_t Player::segment_of(int frame) const {
   const auto it = std::upper_bound(segments_.begin(), segments_.end(), frame,
                                    [](int f, const Segment& s) { return f < s.stream_first; });
-  return static_cast<size_t>(it - segments_.begin()) - 1;
+  // A frame before the segments held (let go of by forget_before) reads the oldest one held.
+  return it == segments_.begin() ? 0 : static_cast<size_t>(it - segments_.begin()) - 1;
 }
 
 void Player::forget_before(int frame) {

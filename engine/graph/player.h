@@ -43,7 +43,8 @@ class Player {
   float duration() const;
 
   // The pose at stream frame `frame` (clamped), in world space, and at time t (seconds, interpolated).
-  // After forget_before(f), frames before f may be read only while they lie in a segment still held.
+  // After forget_before(f), frames before f read as they did while they lie in a segment still held;
+  // earlier ones read the oldest segment held (its frames before its start, clamped to the clip).
   void pose_at(int frame, Pose& out) const;
   void sample(float t, Pose& out) const;
 

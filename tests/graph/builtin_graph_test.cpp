@@ -153,7 +153,8 @@ TEST_CASE("player: letting go of what played keeps a few segments and changes no
   Pose kept, forgot;
   int largest = 0, faded_ticks = 0;
   const float dt = 1.0f / 60.0f;
-  for (int tick = 0; queued < 40 || static_cast<float>(tick) * dt < keeping.duration() - dt; ++tick) {
+  int ticks = 0;
+  for (int tick = 0; queued < 40 || static_cast<float>(tick) * dt < keeping.duration() - dt; ++tick, ticks = tick) {
     const float t = static_cast<float>(tick) * dt;
     const int frame = static_cast<int>(std::floor(t * keeping.fps()));
     if (queued < 40 && (keeping.switches().empty() || frame >= keeping.switches().back().stream_frame)) {
@@ -181,4 +182,16 @@ TEST_CASE("player: letting go of what played keeps a few segments and changes no
   CHECK(largest <= 4);
   CHECK(forgetting.switches().size() <= 4);
   CHECK(forgetting.frame_count() == keeping.frame_count());
+  // Frames let go of still read as a pose (the oldest segment held), never out of bounds; those from the
+  // last frame forgotten on read as before.
+  const int last_forgotten = static_cast<int>(std::floor((static_cast<float>(ticks) - 1.0f) * dt * keeping.fps()));
+  for (int frame = 0; frame < keeping.frame_count(); ++frame) {
+    CAPTURE(frame);
+    forgetting.pose_at(frame, forgot);
+    for (const glm::quat& q : forgot.rotations) REQUIRE(std::abs(glm::length(q) - 1.0f) < 1e-5f);
+    REQUIRE(std::isfinite(forgot.root_position.x + forgot.root_position.y + forgot.root_position.z));
+    if (frame < last_forgotten) continue;
+    keeping.pose_at(frame, kept);
+    REQUIRE(std::memcmp(kept.rotations.data(), forgot.rotations.data(), sizeof(glm::quat) * kept.rotations.size()) == 0);
+  }
 }
