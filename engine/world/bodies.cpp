@@ -149,8 +149,7 @@ void World::keep_clear_of_obstacles(int index) {
     // or leg, a post) is left sooner to its side: a step that along n would leave the body in goes along
     // the obstacle's width instead where that leaves it clear.
     const ObjectFrame frame(at, o.spec.heading);
-    // The capsules in the object's frame: the thread's buffer, warm in its cache, not one per character.
-    thread_local std::vector<PlacedCapsule> framed;
+    std::vector<PlacedCapsule>& framed = call_scratch().framed;  // the capsules in the object's frame
     // The body's box in the object's frame first: a solid apart from it along one axis has no capsule in it.
     const auto depth_at = [&](glm::vec2 offset) {
       const glm::vec3 moved(offset.x, 0.0f, offset.y);

@@ -31,7 +31,8 @@ void World::prefetch(int level) const {
       for (const auto& r : runtime_) {
         const Runtime& rt = *r;
         prefetch_vector(rt.scratch.positions);
-        for (const auto* v : {&rt.scratch.rotations, &rt.out.rotations}) prefetch_vector(*v);
+        prefetch_vector(rt.scratch.rotations);
+        prefetch_vector(rt.out.rotations);
         if (rt.fade_left > 0.0f) prefetch_vector(rt.fade_from.rotations);  // read only while a cross-fade lasts
         prefetch_vector(rt.scratch.weights);
         prefetch_vector(rt.scratch.support.hull);

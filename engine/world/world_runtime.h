@@ -17,12 +17,13 @@
 
 namespace prep {
 
-// Joint positions and rotations and body-part centroids that a world's call works out and uses at once,
-// never kept from one call to the next: the calling thread's buffers, warm in its cache, rather than
-// each character's.
+// Joint positions and rotations, body-part centroids and capsules in an object's frame that a world's
+// call works out and uses at once, never kept from one call to the next: the calling thread's buffers,
+// warm in its cache, rather than each character's.
 struct CallScratch {
   std::vector<glm::vec3> positions, centroids;
   std::vector<glm::quat> rotations;
+  std::vector<PlacedCapsule> framed;  // World::keep_clear_of_obstacles
 };
 inline CallScratch& call_scratch() {
   thread_local CallScratch scratch;
