@@ -48,7 +48,7 @@ void BalanceScratch::resize(int joints, int parts) {
   rotations.resize(n);
   trial_rotations.resize(n);
   for (auto* v : {&centroids, &trial_centroids, &start_centroids, &style, &part_gradient}) v->resize(m);
-  for (auto* v : {&base, &local, &trial_local, &offset}) v->resize(static_cast<size_t>(kMaxOptimizedJoints));
+  for (auto* v : {&base, &local, &trial_local, &offset, &step_rotation}) v->resize(static_cast<size_t>(kMaxOptimizedJoints));
 }
 
 BalanceModel BalanceModel::build(const Skeleton& skeleton, const BodyMap& body, const MassModel& mass) {
@@ -360,10 +360,17 @@ void moved_gradient(const Skeleton& skeleton, const BalanceModel& model, const B
   }
 }
 
-// Rotation by about the rotation vector v for the small v of a descent step: (1, v/2) normalized (first
+// The rotation by the rotation vector v, for the small v of a descent step: (1, v/2) normalized (first
 // order in |v|; the line search judges the step by the true cost, so any such retraction serves, and this
-// one needs no trigonometry).
-inline glm::quat small_rotation(glm::vec3 v) { return quat::normalize(glm::quat(1.0f, 0.5f * v.x, 0.5f * v.y, 0.5f * v.z)); }
+// one needs no trigonometry). Written unnormalized, as one 16-byte store (a normalize reads it whole), for
+// quat::normalize_each to finish.
+inline void small_rotation_unnormalized(glm::vec3 v, glm::quat& out) {
+#if defined(__SSE2__)
+  kinematics_detail::store_quat(out, _mm_set_ps(1.0f, 0.5f * v.z, 0.5f * v.y, 0.5f * v.x));
+#else
+  out = glm::quat(1.0f, 0.5f * v.x, 0.5f * v.y, 0.5f * v.z);
+#endif
+}
 
 // The largest first-order speed of a moved part's centroid per unit step along -joint_gradient: a forward
 // pass carries each joint frame's angular velocity (the sum of the steps of the optimized joints above it)
@@ -469,10 +476,11 @@ BalanceResult optimize_balance(const Skeleton& skeleton, const BalanceModel& mod
     for (int attempt = 0; attempt < 3; ++attempt) {
       if (attempt > 0) {  // half of the rotation (same axis, half the angle): normalize(1 + q) for q.w >= 0
         for (size_t k = 0; k < k_count; ++k) {
-          s.offset[k] = quat::normalize(glm::quat(s.offset[k].w + 1.0f, s.offset[k].x, s.offset[k].y, s.offset[k].z));
+          s.offset[k] = quat::normalize(s.offset[k].w + 1.0f, s.offset[k].x, s.offset[k].y, s.offset[k].z);
         }
       }
-      for (size_t k = 0; k < k_count; ++k) s.trial_local[k] = quat::normalize(quat::mul(s.offset[k], s.base[k]));
+      for (size_t k = 0; k < k_count; ++k) s.trial_local[k] = quat::mul(s.offset[k], s.base[k]);
+      quat::normalize_each(s.trial_local.data(), k_count);
       moved_kinematics(skeleton, model, pose, s.trial_local.data(), s.trial_positions, s.trial_rotations);
       moved_centroids(skeleton, model, s.trial_positions, s.trial_rotations, s.trial_centroids.data());
       const BalanceCost c = moved_cost(model, params, targets, s.trial_centroids.data(), fixed, fixed_com);
@@ -526,9 +534,11 @@ BalanceResult optimize_balance(const Skeleton& skeleton, const BalanceModel& mod
         const size_t j = static_cast<size_t>(model.optimized[k]);
         const glm::quat& parent_world = s.rotations[static_cast<size_t>(skeleton.joints[j].parent)];
         // A world-frame rotation vector at joint j, expressed in its parent's frame, premultiplies its local rotation.
-        const glm::vec3 delta = quat::rotate(glm::conjugate(parent_world), -step * s.joint_gradient[j]);
-        s.trial_local[k] = quat::normalize(quat::mul(small_rotation(delta), s.local[k]));
+        small_rotation_unnormalized(quat::rotate(glm::conjugate(parent_world), -step * s.joint_gradient[j]), s.step_rotation[k]);
       }
+      quat::normalize_each(s.step_rotation.data(), k_count);
+      for (size_t k = 0; k < k_count; ++k) s.trial_local[k] = quat::mul(s.step_rotation[k], s.local[k]);
+      quat::normalize_each(s.trial_local.data(), k_count);
       moved_kinematics(skeleton, model, pose, s.trial_local.data(), s.trial_positions, s.trial_rotations);
       moved_centroids(skeleton, model, s.trial_positions, s.trial_rotations, s.trial_centroids.data());
       const float moved = largest_move(model, s.trial_centroids.data(), s.centroids.data());
@@ -557,10 +567,9 @@ BalanceResult optimize_balance(const Skeleton& skeleton, const BalanceModel& mod
   }
   for (size_t k = 0; k < k_count; ++k) pose.rotations[static_cast<size_t>(model.optimized[k])] = s.local[k];
   if (memory) {
-    for (size_t k = 0; k < k_count; ++k) {
-      const glm::quat q = quat::normalize(quat::mul(s.local[k], glm::conjugate(s.base[k])));
-      memory->offset[k] = q.w < 0.0f ? -q : q;
-    }
+    for (size_t k = 0; k < k_count; ++k) memory->offset[k] = quat::mul(s.local[k], glm::conjugate(s.base[k]));
+    quat::normalize_each(memory->offset.data(), k_count);
+    for (size_t k = 0; k < k_count; ++k) memory->offset[k] = quat::with_positive_w(memory->offset[k]);
     memory->valid = true;
   }
   result.largest_shift = largest_move(model, s.centroids.data(), targets.style);

@@ -78,6 +78,7 @@ struct BalanceScratch {
   std::vector<glm::quat> base;                        // the blended rotations of the optimized joints
   std::vector<glm::quat> local, trial_local;          // the optimized joints' local rotations (current, trial)
   std::vector<glm::quat> offset;                      // the warm start's correction being tried
+  std::vector<glm::quat> step_rotation;               // a line search trial's turn of each optimized joint
   void resize(int joints, int parts);
 };
 

@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 
 #include <random>
+#include <vector>
 
 #include "tests/support/bits.h"
 
@@ -41,4 +42,33 @@ TEST_CASE("quaternion ops: product, rotation and normalization are glm's to the 
   }
   CHECK(differing_products >= 1000);
   CHECK(same_bits(quat::normalize(glm::quat(0.0f, 0.0f, 0.0f, 0.0f)), glm::quat(1.0f, 0.0f, 0.0f, 0.0f)));
+}
+
+TEST_CASE("quaternion ops: the batched and component-wise normalizes are normalize's to the bit") {
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f), scale(-6.0f, 2.0f);
+  std::vector<glm::quat> batch, single;
+  for (int round = 0; round < 20000; ++round) {
+    const size_t n = static_cast<size_t>(round % 11);  // whole groups of four and every tail
+    batch.resize(n);
+    for (size_t i = 0; i < n; ++i) {
+      const float s = std::pow(10.0f, scale(rng));
+      batch[i] = (rng() % 13 == 0) ? glm::quat(0.0f, 0.0f, 0.0f, 0.0f) : glm::quat(u(rng) * s, u(rng), u(rng) * s, u(rng));
+    }
+    single = batch;
+    quat::normalize_each(batch.data(), n);
+    for (size_t i = 0; i < n; ++i) {
+      REQUIRE(same_bits(batch[i], quat::normalize(single[i])));
+      REQUIRE(same_bits(quat::normalize(single[i].w, single[i].x, single[i].y, single[i].z), quat::normalize(single[i])));
+    }
+  }
+}
+
+TEST_CASE("quaternion ops: with_positive_w is q or -q, whichever has w >= 0") {
+  const glm::quat q(-0.5f, 0.5f, -0.5f, 0.5f);
+  CHECK(same_bits(quat::with_positive_w(q), -q));
+  CHECK(same_bits(quat::with_positive_w(-q), -q));
+  // A negative zero w is not below zero: the quaternion stays as it is, signs and all.
+  const glm::quat zero_w(-0.0f, -1.0f, 0.0f, 0.0f);
+  CHECK(same_bits(quat::with_positive_w(zero_w), zero_w));
 }
