@@ -62,13 +62,29 @@ float smoothstep01(float x) {
 
 }  // namespace
 
-glm::vec3 solve_leg(const Skeleton& skeleton, const LegChain& leg, const IkParams& params, Pose& pose,
-                    const std::vector<glm::vec3>& wp, const std::vector<glm::quat>& wr, glm::vec3 target,
-                    const glm::quat& foot_world, glm::vec3 forward, glm::vec3 body_shift) {
-  const size_t hip = static_cast<size_t>(leg.hip), knee = static_cast<size_t>(leg.knee),
-               ankle = static_cast<size_t>(leg.ankle);
+namespace {
+
+// One leg's solve in flight, passed from phase to phase. solve_leg runs the phases one after another;
+// apply_foot_ik runs each phase for both legs before the next. A phase is a chain of square roots and
+// divisions, each waiting on the one before; the other leg's chain, next to it, fills the wait. Each
+// leg's arithmetic is the same either way, to the bit.
+struct LegSolve {
+  size_t hip = 0, knee = 0, ankle = 0;
+  V3 a, b, c;         // hip, knee and ankle, shifted with the body
+  float upper = 0.0f, lower = 0.0f, reach = 0.0f;
+  V3 to_target;       // hip to the target brought within reach
+  glm::vec3 axis{0.0f};  // the knee's bending axis
+  glm::quat r0, r1;   // the bend: at the hip and at the knee, in world
+  V3 bent;            // hip to ankle, the knee bent
+  glm::quat r2;       // the swing about the hip onto the target
+};
+
+// How far the hip must reach: the target within the leg's softened reach.
+void leg_reach(const LegChain& leg, const IkParams& params, const std::vector<glm::vec3>& wp, glm::vec3 target,
+               glm::vec3 body_shift, LegSolve& l) {
+  l.hip = static_cast<size_t>(leg.hip), l.knee = static_cast<size_t>(leg.knee), l.ankle = static_cast<size_t>(leg.ankle);
   const V3 shift = V3::load(body_shift);
-  const V3 a = V3::load(wp[hip]) + shift, b = V3::load(wp[knee]) + shift, c = V3::load(wp[ankle]) + shift;
+  const V3 a = V3::load(wp[l.hip]) + shift, b = V3::load(wp[l.knee]) + shift, c = V3::load(wp[l.ankle]) + shift;
   const float upper = length(b - a), lower = length(c - b);
   const float full = upper + lower;
   const float eps = 1e-5f * full;
@@ -86,9 +102,15 @@ glm::vec3 solve_leg(const Skeleton& skeleton, const LegChain& leg, const IkParam
   }
   reach = std::max(reach, std::abs(upper - lower) + eps);
   // The target brought within reach (a degenerate request keeps the ankle), as seen from the hip.
-  to_target = (wanted > 1e-7f ? a + (reach / wanted) * to_target : c) - a;
+  l.to_target = (wanted > 1e-7f ? a + (reach / wanted) * to_target : c) - a;
+  l.a = a, l.b = b, l.c = c;
+  l.upper = upper, l.lower = lower, l.reach = reach;
+}
 
-  // Knee: set the hip-ankle distance to `reach` by the law of cosines, bending in the knee's current plane.
+// Knee: set the hip-ankle distance to the reach by the law of cosines, bending in the knee's current plane.
+void leg_bend(glm::vec3 forward, LegSolve& l) {
+  const V3 a = l.a, b = l.b, c = l.c;
+  const float upper = l.upper, lower = l.lower, reach = l.reach;
   const V3 ac = normalize(c - a);
   V3 axis = cross(c - a, b - a);
   if (dot(axis, axis) < 1e-8f * upper * upper * lower * lower) axis = cross(c - a, V3::load(forward));
@@ -98,30 +120,49 @@ glm::vec3 solve_leg(const Skeleton& skeleton, const LegChain& leg, const IkParam
   const Angle ba_bc_0 = angle_between_unit(-ab, normalize(c - b));
   const Angle ac_ab_1 = angle_of_cosine((lower * lower - upper * upper - reach * reach) / (-2.0f * upper * reach));
   const Angle ba_bc_1 = angle_of_cosine((reach * reach - upper * upper - lower * lower) / (-2.0f * upper * lower));
-  const glm::quat r0 = turn_between(ac_ab_0, ac_ab_1, axis.vec());  // at the hip, in world
-  const glm::quat r1 = turn_between(ba_bc_0, ba_bc_1, axis.vec());  // at the knee, in world
-  // Then swing the whole leg about the hip so that the (new) ankle direction points at the target.
-  const glm::quat r01 = quat::mul(r0, r1);
-  const V3 bent = rotate(r0, b - a) + rotate(r01, c - b);  // hip to ankle, the knee bent
-  const glm::quat r2 = rotation_between(bent, to_target);
+  l.axis = axis.vec();
+  l.r0 = turn_between(ac_ab_0, ac_ab_1, l.axis);  // at the hip, in world
+  l.r1 = turn_between(ba_bc_0, ba_bc_1, l.axis);  // at the knee, in world
+}
 
-  // The new world rotations, then the local ones. The world rotations are unit quaternions (normalized
-  // here), so their inverses are their conjugates.
-  const int hip_parent = skeleton.joints[hip].parent;
+// Then swing the whole leg about the hip so that the (new) ankle direction points at the target.
+void leg_swing(LegSolve& l) {
+  const glm::quat r01 = quat::mul(l.r0, l.r1);
+  l.bent = rotate(l.r0, l.b - l.a) + rotate(r01, l.c - l.b);
+  l.r2 = rotation_between(l.bent, l.to_target);
+}
+
+// The new world rotations, then the local ones. The world rotations are unit quaternions (normalized
+// here), so their inverses are their conjugates. Returns the ankle position reached.
+glm::vec3 leg_rotations(const Skeleton& skeleton, Pose& pose, const std::vector<glm::quat>& wr,
+                        const glm::quat& foot_world, const LegSolve& l) {
+  const int hip_parent = skeleton.joints[l.hip].parent;
   const glm::quat parent_world = hip_parent >= 0 ? wr[static_cast<size_t>(hip_parent)] : glm::quat(1, 0, 0, 0);
-  const glm::quat r20 = quat::mul(r2, r0);
-  const glm::quat hip_world = quat::normalize(quat::mul(r20, wr[hip]));
-  const glm::quat knee_world = quat::normalize(quat::mul(quat::mul(r20, r1), wr[knee]));
-  pose.rotations[hip] = quat::normalize(quat::mul(glm::conjugate(parent_world), hip_world));
-  pose.rotations[knee] = quat::normalize(quat::mul(glm::conjugate(hip_world), knee_world));
+  const glm::quat r20 = quat::mul(l.r2, l.r0);
+  const glm::quat hip_world = quat::normalize(quat::mul(r20, wr[l.hip]));
+  const glm::quat knee_world = quat::normalize(quat::mul(quat::mul(r20, l.r1), wr[l.knee]));
+  pose.rotations[l.hip] = quat::normalize(quat::mul(glm::conjugate(parent_world), hip_world));
+  pose.rotations[l.knee] = quat::normalize(quat::mul(glm::conjugate(hip_world), knee_world));
   // The shin may not be the ankle's direct parent in every skeleton: compose the joints between them.
   glm::quat between(1, 0, 0, 0);
-  for (int j = skeleton.joints[ankle].parent; j != static_cast<int>(knee); j = skeleton.joints[static_cast<size_t>(j)].parent) {
+  for (int j = skeleton.joints[l.ankle].parent; j != static_cast<int>(l.knee); j = skeleton.joints[static_cast<size_t>(j)].parent) {
     between = quat::mul(pose.rotations[static_cast<size_t>(j)], between);
   }
   const glm::quat above_ankle = quat::mul(knee_world, between);
-  pose.rotations[ankle] = quat::normalize(quat::mul(glm::inverse(above_ankle), foot_world));
-  return (a + rotate(r2, bent)).vec();
+  pose.rotations[l.ankle] = quat::normalize(quat::mul(glm::inverse(above_ankle), foot_world));
+  return (l.a + rotate(l.r2, l.bent)).vec();
+}
+
+}  // namespace
+
+glm::vec3 solve_leg(const Skeleton& skeleton, const LegChain& leg, const IkParams& params, Pose& pose,
+                    const std::vector<glm::vec3>& wp, const std::vector<glm::quat>& wr, glm::vec3 target,
+                    const glm::quat& foot_world, glm::vec3 forward, glm::vec3 body_shift) {
+  LegSolve l;
+  leg_reach(leg, params, wp, target, body_shift, l);
+  leg_bend(forward, l);
+  leg_swing(l);
+  return leg_rotations(skeleton, pose, wr, foot_world, l);
 }
 
 FrameContacts select_pinned_points(const FrameContacts& contacts, const std::array<float, 2>& heel_speed,
@@ -199,11 +240,18 @@ void apply_foot_ik(const Skeleton& skeleton, const BodyMap& body, const IkParams
   pose.root_position.y -= root_drop;
   const glm::vec3 body_shift(0.0f, -root_drop, 0.0f);
 
+  // solve_leg for both legs, phase by phase (LegSolve).
+  std::array<LegSolve, 2> legs;
+  for (size_t side = 0; side < 2; ++side) leg_reach(body.legs[side], params, wp, target[side], body_shift, legs[side]);
+  for (size_t side = 0; side < 2; ++side) leg_bend(forward, legs[side]);
+  for (size_t side = 0; side < 2; ++side) leg_swing(legs[side]);
+  std::array<glm::vec3, 2> solved{};
+  for (size_t side = 0; side < 2; ++side) solved[side] = leg_rotations(skeleton, pose, wr, foot_world[side], legs[side]);
+
   for (size_t side = 0; side < 2; ++side) {
     const LegChain& leg = body.legs[side];
     FootPlant& plant = plants[side];
-    const glm::vec3 reached =
-        solve_leg(skeleton, leg, params, pose, wp, wr, target[side], foot_world[side], forward, body_shift);
+    const glm::vec3 reached = solved[side];
     if (plant.heel_planted && plant.toe_planted) {
       // Flat foot: the toe tip follows the heel along the anchored direction; if the toe joint bent a little
       // the tip moved along it, and the anchor goes with it so a later heel-off pivots about where it is.

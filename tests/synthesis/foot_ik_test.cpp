@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <cstring>
 
 #include "engine/library/builtin.h"
 #include "engine/motion/kinematics.h"
@@ -180,6 +181,56 @@ TEST_CASE("a flat foot keeps its toe bend, so the planted toe tip does not slide
     CHECK(std::abs(glm::dot(out.rotations[static_cast<size_t>(leg.toe)], stand.rotations[static_cast<size_t>(leg.toe)])) ==
           doctest::Approx(1.0f).epsilon(1e-6));
   }
+}
+
+TEST_CASE("both legs solved side by side are each leg's own solve, to the bit") {
+  // apply_foot_ik takes the two legs through the solve phase by phase; each must come out as solve_leg
+  // alone gives it, whatever the other leg asks (one target within reach, one beyond it).
+  const auto skeleton = test::make_test_skeleton();
+  const BodyMap body = BodyMap::detect(*skeleton);
+  IkParams params;
+  params.max_root_drop = 0.0f;  // the pelvis stays: the targets are the anchors as given
+  Pose pose(skeleton->size());
+  pose.root_position = {0.1f, 0.92f, -0.2f};
+  pose.rotations[0] = glm::angleAxis(0.4f, glm::vec3(0, 1, 0));
+  const float bends[2][2] = {{-0.25f, 0.5f}, {0.1f, 0.3f}};
+  for (size_t side = 0; side < 2; ++side) {
+    pose.rotations[static_cast<size_t>(body.legs[side].hip)] = glm::angleAxis(bends[side][0], glm::vec3(1, 0, 0));
+    pose.rotations[static_cast<size_t>(body.legs[side].knee)] = glm::angleAxis(bends[side][1], glm::vec3(1, 0.2f, 0));
+  }
+  std::vector<glm::vec3> wp;
+  std::vector<glm::quat> wr;
+  forward_kinematics(*skeleton, pose, wp, &wr);
+  const std::array<glm::vec3, 2> anchors = {wp[static_cast<size_t>(body.legs[kLeft].ankle)] + glm::vec3(0.06f, 0.03f, 0.1f),
+                                            wp[static_cast<size_t>(body.legs[kRight].hip)] + glm::vec3(-0.1f, -1.2f, 0.3f)};
+  FootPlants plants{};
+  FrameContacts pinned{};
+  for (size_t side = 0; side < 2; ++side) {
+    plants[side].heel_planted = true;
+    plants[side].heel_anchor = anchors[side];
+    pinned[side].heel = true;
+  }
+  Pose together = pose;
+  float root_drop = 0.0f;
+  apply_foot_ik(*skeleton, body, params, pinned, 1.0f / 30.0f, together, wp, wr, plants, root_drop);
+  REQUIRE(root_drop == 0.0f);
+
+  Pose alone = pose;
+  const glm::vec3 forward = glm::angleAxis(0.4f, glm::vec3(0, 1, 0)) * glm::vec3(0, 0, 1);
+  for (size_t side = 0; side < 2; ++side) {
+    const glm::quat foot_world = wr[static_cast<size_t>(body.legs[side].ankle)];
+    solve_leg(*skeleton, body.legs[side], params, alone, wp, wr, anchors[side], foot_world, forward, glm::vec3(0.0f, -0.0f, 0.0f));
+  }
+  for (size_t j = 0; j < static_cast<size_t>(skeleton->size()); ++j) {
+    CAPTURE(j);
+    CHECK(std::memcmp(&together.rotations[j], &alone.rotations[j], sizeof(glm::quat)) == 0);
+  }
+  // The legs did move: the left foot 12 cm onto its anchor (within the softened reach's millimetre).
+  std::vector<glm::vec3> solved;
+  forward_kinematics(*skeleton, together, solved);
+  const size_t left_ankle = static_cast<size_t>(body.legs[kLeft].ankle);
+  CHECK(glm::length(solved[left_ankle] - wp[left_ankle]) > 0.1f);
+  CHECK(glm::length(solved[left_ankle] - anchors[kLeft]) < 1e-3f);
 }
 
 }  // namespace prep
