@@ -150,7 +150,14 @@ BalanceCost balance_cost(const BalanceModel& model, const BalanceParams& params,
   const float d2 = glm::dot(d, d);
   cost.com_distance = std::sqrt(d2);
   cost.balance = smooth_norm(d2, e);  // Eq. 6
-  for (size_t i = 0; i < n; ++i) cost.style += style_term(V3::load(centroids[i]), targets.style[i], e) * inv_n;  // Eq. 7
+  if (centroids == targets.style) {
+    // At the style targets themselves (where the optimizer starts) every distance of Eq. 7 is zero and
+    // every term the same number: one square root instead of one per part.
+    const float at_target = smooth_norm(0.0f, e) * inv_n;
+    for (size_t i = 0; i < n; ++i) cost.style += at_target;
+  } else {
+    for (size_t i = 0; i < n; ++i) cost.style += style_term(V3::load(centroids[i]), targets.style[i], e) * inv_n;  // Eq. 7
+  }
   if (targets.previous && targets.before_previous) {
     for (size_t i = 0; i < n; ++i) {
       const V3 a = acceleration(V3::load(centroids[i]), targets.previous[i], targets.before_previous[i]);
@@ -433,7 +440,7 @@ BalanceResult optimize_balance(const Skeleton& skeleton, const BalanceModel& mod
   if (!kinematics_given) forward_kinematics(skeleton, pose, s.positions, &s.rotations);
   // The posture's centroids are the style targets (Eq. 7's p_i(t) is this very posture).
   std::copy(targets.style, targets.style + model.parts.size(), s.centroids.begin());
-  BalanceCost current = balance_cost(model, params, targets, s.centroids.data());
+  BalanceCost current = balance_cost(model, params, targets, targets.style);
   result.before = current;
   result.after = current;
   // The cost of the parts that never move (their style and smoothness terms stay as they are).
@@ -442,10 +449,11 @@ BalanceResult optimize_balance(const Skeleton& skeleton, const BalanceModel& mod
     const float e = params.norm_smoothing;
     const float inv_n = 1.0f / static_cast<float>(model.parts.size());
     const bool history = targets.previous && targets.before_previous;
+    const float style_at_target = smooth_norm(0.0f, e) * inv_n;  // each part is at its style target
     for (int i : model.moved_parts) {
       const size_t ii = static_cast<size_t>(i);
       const V3 centroid = V3::load(s.centroids[ii]);
-      fixed.style -= style_term(centroid, targets.style[ii], e) * inv_n;
+      fixed.style -= style_at_target;
       if (history) {
         const V3 acc = acceleration(centroid, targets.previous[ii], targets.before_previous[ii]);
         fixed.smooth -= smooth_norm(dot(acc, acc), e) * inv_n;
