@@ -4,6 +4,8 @@
 #include <cctype>
 #include <stdexcept>
 
+#include "engine/motion/quaternion_ops.h"
+
 namespace prep {
 
 namespace {
@@ -125,10 +127,10 @@ void BodyVolumes::place(const std::vector<glm::vec3>& p, const std::vector<glm::
     if (c.end_joint >= 0) {
       out[k] = {p[j], p[static_cast<size_t>(c.end_joint)], c.radius};
     } else if (c.part != BodyPart::Head || c.joint != head_) {
-      out[k] = {p[j], p[j] + q[j] * c.local_end, c.radius};
+      out[k] = {p[j], p[j] + quat::rotate(q[j], c.local_end), c.radius};
     } else {
       // The head: centred above the head joint along its up axis (towards its End Site when it has one).
-      const glm::vec3 up = q[j] * c.local_end;
+      const glm::vec3 up = quat::rotate(q[j], c.local_end);
       const glm::vec3 centre = p[j] + up * kHeadCentreAbove;
       out[k] = {centre - up * kHeadHalfLength, centre + up * kHeadHalfLength, c.radius};
     }

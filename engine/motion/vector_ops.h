@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/vec3.hpp>
@@ -44,6 +45,12 @@ struct V3 {
   }
   // q * v for a unit quaternion q (glm's operator*, as quat::rotate).
   friend V3 rotate(const glm::quat& q, V3 v) { return {kinematics_detail::rotate(kinematics_detail::load_quat(q), v.r)}; }
+  // glm::min and glm::max lane by lane: y < x ? y : x and x < y ? y : x, which of two equal numbers (+0
+  // and -0) they return included (minps and maxps return their second operand then).
+  friend V3 min(V3 x, V3 y) { return {_mm_min_ps(y.r, x.r)}; }
+  friend V3 max(V3 x, V3 y) { return {_mm_max_ps(y.r, x.r)}; }
+  // s in x, y and z: v + s and v - s are glm's vec3 and scalar sum and difference.
+  static V3 splat(float s) { return {_mm_set_ps(0.0f, s, s, s)}; }
 };
 #else
 struct V3 {
@@ -66,6 +73,9 @@ struct V3 {
   friend V3 cross(V3 a, V3 b) { return {glm::cross(a.r, b.r)}; }
   friend float dot(V3 a, V3 b) { return glm::dot(a.r, b.r); }
   friend V3 rotate(const glm::quat& q, V3 v) { return {q * v.r}; }
+  friend V3 min(V3 x, V3 y) { return {glm::min(x.r, y.r)}; }
+  friend V3 max(V3 x, V3 y) { return {glm::max(x.r, y.r)}; }
+  static V3 splat(float s) { return {glm::vec3(s)}; }
 };
 #endif
 

@@ -152,16 +152,21 @@ void World::keep_clear_of_obstacles(int index) {
     std::vector<PlacedCapsule>& framed = call_scratch().framed;  // the capsules in the object's frame
     // The body's box in the object's frame first: a solid apart from it along one axis has no capsule in it.
     const auto depth_at = [&](glm::vec2 offset) {
-      const glm::vec3 moved(offset.x, 0.0f, offset.y);
+      const V3 moved = V3::load(glm::vec3(offset.x, 0.0f, offset.y));
       framed.resize(rt.capsules.size());
-      glm::vec3 low(std::numeric_limits<float>::infinity()), high(-std::numeric_limits<float>::infinity());
+      V3 low_in = V3::splat(std::numeric_limits<float>::infinity()), high_in = V3::splat(-std::numeric_limits<float>::infinity());
       for (size_t i = 0; i < rt.capsules.size(); ++i) {
         const PlacedCapsule& capsule = rt.capsules[i];
         PlacedCapsule& f = framed[i];
-        f = {frame.to_local(capsule.a + moved), frame.to_local(capsule.b + moved), capsule.radius};
-        low = glm::min(low, glm::min(f.a, f.b) - f.radius);
-        high = glm::max(high, glm::max(f.a, f.b) + f.radius);
+        const V3 a = frame.to_local(V3::load(capsule.a) + moved), b = frame.to_local(V3::load(capsule.b) + moved);
+        a.store(f.a);
+        b.store(f.b);
+        f.radius = capsule.radius;
+        const V3 radius = V3::splat(capsule.radius);
+        low_in = min(low_in, min(a, b) - radius);
+        high_in = max(high_in, max(a, b) + radius);
       }
+      const glm::vec3 low = low_in.vec(), high = high_in.vec();
       float depth = 0.0f;
       for (const ObjectSolid& s : solids_[k]) {
         if (ends_only && s.part != SolidPart::Post && s.part != SolidPart::Leg && s.part != SolidPart::Foot) continue;

@@ -45,3 +45,21 @@ TEST_CASE("vector ops: sums, products, crosses, dots, lengths, normalization and
   CHECK(reordered_dots_differ >= 1000);  // the dot check above does tell orders apart
   CHECK(same_bits(V3::zero().vec(), glm::vec3(0.0f)));
 }
+
+TEST_CASE("vector ops: min and max in a register are glm's, which of two equal zeros and NaNs included") {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  const float specials[] = {0.0f, -0.0f, 1.0f, -1.0f, NAN, INFINITY, -INFINITY};
+  const auto pick = [&](int k) { return k % 3 == 0 ? specials[static_cast<size_t>(rng() % 7)] : u(rng); };
+  for (int i = 0; i < 100000; ++i) {
+    const glm::vec3 a(pick(i), pick(i + 1), pick(i + 2)), b(pick(i + 1), pick(i), pick(i + 3));
+    REQUIRE(same_bits(min(V3::load(a), V3::load(b)).vec(), glm::min(a, b)));
+    REQUIRE(same_bits(max(V3::load(a), V3::load(b)).vec(), glm::max(a, b)));
+    const float s = pick(i);
+    REQUIRE(same_bits((V3::load(a) - V3::splat(s)).vec(), a - s));
+    REQUIRE(same_bits((V3::load(a) + V3::splat(s)).vec(), a + s));
+  }
+  // The two zeros: glm's min(+0, -0) is +0 (-0 < +0 is false), its max(-0, +0) is -0.
+  CHECK(same_bits(min(V3::load(glm::vec3(0.0f)), V3::load(glm::vec3(-0.0f))).vec(), glm::vec3(0.0f)));
+  CHECK(same_bits(max(V3::load(glm::vec3(-0.0f)), V3::load(glm::vec3(0.0f))).vec(), glm::vec3(-0.0f)));
+}

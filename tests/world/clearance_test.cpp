@@ -16,6 +16,7 @@
 #include "engine/world/obstacle_fit.h"
 #include "engine/world/policy_cache.h"
 #include "engine/world/world.h"
+#include "tests/support/bits.h"
 #include "tests/support/paths.h"
 
 using namespace prep;
@@ -136,6 +137,18 @@ TEST_CASE("capsule depth: the distance's negative part exactly, for capsules far
   }
   CHECK(inside > 200);  // the cases that matter were met
   CHECK(far > 20000);
+}
+
+TEST_CASE("object frame: a point in a register goes to the object's frame as the scalar path takes it, to the bit") {
+  std::mt19937 rng(43);
+  std::uniform_real_distribution<float> around(-8.0f, 8.0f), turn(-7.0f, 7.0f);
+  for (int k = 0; k < 100000; ++k) {
+    const ObjectFrame frame({around(rng), around(rng)}, turn(rng));
+    // Heights of either zero's sign too: the register path must keep y as it is.
+    const float y = k % 5 == 0 ? (k % 10 == 0 ? -0.0f : 0.0f) : around(rng);
+    const glm::vec3 point(around(rng), y, around(rng));
+    REQUIRE(test::same_bits(frame.to_local(V3::load(point)).vec(), frame.to_local(point)));
+  }
 }
 
 TEST_CASE("body volumes: a capsule per bone with the body map's parts, and the head") {
