@@ -275,12 +275,15 @@ void World::place_body(int index, glm::vec2& low, glm::vec2& high) {
     forward_kinematics(*assets_->set->skeleton, c.pose, k.positions, &k.rotations);
     volumes_->place(k.positions, k.rotations, rt.capsules);
   }
-  low = glm::vec2(std::numeric_limits<float>::infinity());
-  high = -low;
+  // The box in registers (x and z; y rides along unread), glm's min and max lane by lane.
+  V3 low_in = V3::splat(std::numeric_limits<float>::infinity()), high_in = V3::splat(-std::numeric_limits<float>::infinity());
   for (const PlacedCapsule& p : rt.capsules) {
-    low = glm::min(low, glm::min(floor_xz(p.a), floor_xz(p.b)) - p.radius);
-    high = glm::max(high, glm::max(floor_xz(p.a), floor_xz(p.b)) + p.radius);
+    const V3 a = V3::load(p.a), b = V3::load(p.b), radius = V3::splat(p.radius);
+    low_in = min(low_in, min(a, b) - radius);
+    high_in = max(high_in, max(a, b) + radius);
   }
+  low = floor_xz(low_in.vec());
+  high = floor_xz(high_in.vec());
 }
 
 void World::displace(int index, glm::vec2 offset) {
