@@ -218,14 +218,16 @@ void Synthesizer::stage_balance(const SynthesisInput& in, SynthesisState& state,
   BalanceResult result;
   const glm::vec3* final_centroids = b.style.data();
   if (optimize) {
-    b.positions = s.positions;  // the IK stage's forward kinematics of `out` (same sizes: no allocation)
-    b.rotations = s.rotations;
+    // The IK stage's forward kinematics of `out` are handed to the optimizer and its final ones taken back
+    // by exchanging buffers, not copying them (both hold one entry per joint of this skeleton).
+    b.positions.swap(s.positions);
+    b.rotations.swap(s.rotations);
     result = optimize_balance(*skeleton_, balance_model_, bp, targets, out, b, &state.correction, in.dt, true);
     final_centroids = b.centroids.data();
     // The optimizer's kinematics are those of the final posture but for the joints it does not read
     // (fingers, eyes): those are brought up to date, and stage_floor needs no pass of its own.
-    s.positions = b.positions;
-    s.rotations = b.rotations;
+    s.positions.swap(b.positions);
+    s.rotations.swap(b.rotations);
     chain_kinematics(*skeleton_, balance_stale_, out, s.positions, s.rotations);
   } else {
     state.correction.valid = false;  // the next optimized frame starts from its blended posture
