@@ -118,7 +118,9 @@ void run(const Options& o) {
                           {"synthesized_fraction", c.synthesized_fraction},
                           {"balanced_fraction", c.balanced_fraction},
                           {"kb_per_character", c.kb_per_character},
-                          {"entry_fill_ms", c.entry_fill_ms}});
+                          {"entry_fill_ms", c.entry_fill_ms},
+                          {"huge_page_mb", c.huge_page_mb},
+                          {"huge_page_ms", c.huge_page_ms}});
     if (n == kCrowdTargetCharacters) crowd_target_ms = c.ms_per_frame, crowd_target_cpu_ms = c.cpu_ms_per_frame;
     say(std::to_string(c.ms_per_frame) + " ms/frame\n");
   }

@@ -72,6 +72,8 @@ struct CrowdBenchmark {
   double balanced_fraction = 0;       // ... in which the balance optimizer ran (alpha >= 0.3)
   double kb_per_character = 0;        // resident memory added per character when the crowd was built
   double entry_fill_ms = 0;           // fill_entry_frames before the first frame (once per graph: 0 after)
+  double huge_page_mb = 0;            // memory on 2 MB pages once the crowd was built (huge_pages.h)
+  double huge_page_ms = 0;            // the time the kernel took to move the heap onto them
 };
 // N worlds made from `scenario` (one user character; its objects kept), each character placed at a
 // random start (seeded) within 2 m of the scenario's start, facing a random direction, its first object

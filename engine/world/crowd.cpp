@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "engine/util/error.h"
+#include "engine/util/huge_pages.h"
 
 namespace prep {
 namespace {
@@ -47,6 +48,7 @@ Crowd::Crowd(const Scenario& lane, std::shared_ptr<const WorldAssets> assets, co
   for (int i = 0; i < n; ++i) random_.emplace_back(options.seed * 0x9E3779B97F4A7C15ull + static_cast<std::uint64_t>(i));
   fill_entry_frames(*assets_, workers_);
   for (int i = 0; i < n; ++i) worlds_.push_back(make_lane(i));
+  back_heap_with_huge_pages();  // every tick walks all lanes' memory (huge_pages.h)
   step_lanes_ = [this](size_t first, size_t last, int) {
     for (size_t i = first; i < last; ++i) {
       prefetch_ahead(worlds_, i, last);
