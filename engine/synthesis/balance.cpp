@@ -148,6 +148,7 @@ BalanceCost balance_cost(const BalanceModel& model, const BalanceParams& params,
   const glm::vec3 com = model_center_of_mass(model, centroids);
   const glm::vec2 d(com.x - targets.support_centre.x, com.z - targets.support_centre.y);
   const float d2 = glm::dot(d, d);
+  cost.com = com;
   cost.com_distance = std::sqrt(d2);
   cost.balance = smooth_norm(d2, e);  // Eq. 6
   if (centroids == targets.style) {
@@ -283,6 +284,7 @@ BalanceCost moved_cost(const BalanceModel& model, const BalanceParams& params, c
   const glm::vec3 com = moved_com(model, fixed_com, centroids);
   const glm::vec2 d(com.x - targets.support_centre.x, com.z - targets.support_centre.y);
   const float d2 = glm::dot(d, d);
+  cost.com = com;
   cost.com_distance = std::sqrt(d2);
   cost.balance = smooth_norm(d2, e);  // Eq. 6
   cost.style = fixed.style;
@@ -460,7 +462,7 @@ BalanceResult optimize_balance(const Skeleton& skeleton, const BalanceModel& mod
       }
     }
   }
-  V3 fixed_com_sum = V3::load(model_center_of_mass(model, s.centroids.data()));
+  V3 fixed_com_sum = V3::load(current.com);  // the centroids are the style targets, whose COM the cost took
   for (int i : model.moved_parts) fixed_com_sum -= model.parts[static_cast<size_t>(i)].mass * V3::load(s.centroids[static_cast<size_t>(i)]);
   const glm::vec3 fixed_com = fixed_com_sum.vec();
   for (size_t k = 0; k < k_count; ++k) {

@@ -96,6 +96,7 @@ struct BalanceCost {
   float smooth = 0.0f;    // C_m
   float total = 0.0f;     // C
   float com_distance = 0.0f;  // plain |p_com - p_cos| on the floor, metres
+  glm::vec3 com{0.0f};        // p_com, the centre of mass the cost was taken at
 };
 
 // Centroids of the body parts from joint world positions/rotations (same values as segment_centroids).

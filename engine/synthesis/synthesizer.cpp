@@ -244,7 +244,8 @@ void Synthesizer::stage_balance(const SynthesisInput& in, SynthesisState& state,
     report->feet = feet;
     report->pinned = s.pinned;
     if (has_support) {
-      const glm::vec3 before = model_center_of_mass(balance_model_, b.style.data());
+      // The blended posture's COM: the optimizer's starting cost took it from the same centroids.
+      const glm::vec3 before = optimize ? result.before.com : model_center_of_mass(balance_model_, b.style.data());
       report->com_inside_before = s.support.contains({before.x, before.z});
       if (optimize) {
         const glm::vec3 after = model_center_of_mass(balance_model_, final_centroids);
