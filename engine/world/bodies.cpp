@@ -34,6 +34,21 @@ void for_each_pair_within(const std::vector<WorldCharacter>& characters, float w
     }
 }
 
+// How far a ball's solids reach from the vertical through its middle: its spheres' radii beyond their
+// centres' distance from that line.
+float ball_floor_reach(const std::vector<ObjectSolid>& solids) {
+  float reach = 0.0f;
+  for (const ObjectSolid& s : solids) {
+    const float half_width = s.sphere ? 0.5f * s.extents.x : 0.5f * glm::length(glm::vec2(s.extents.x, s.extents.z));
+    reach = std::max(reach, glm::length(glm::vec2(s.centre.x, s.centre.z)) + half_width);
+  }
+  return reach;
+}
+
+// Far beyond rounding (bodies and balls are metres across at most): a body this far out of a ball's
+// reach has no capsule whose depth in it rounds above 0.
+constexpr float kSurelyApart = 0.01f;
+
 }  // namespace
 
 // Characters keep their distance: two whose roots come closer than kPersonalSpace on the floor are set
@@ -141,6 +156,13 @@ void World::keep_clear_of_obstacles(int index) {
     }
     // The object within a circle about its middle: the body's floor box farther from that middle is clear.
     if (glm::length(glm::clamp(at, body_low, body_high) - at) > object_reach) continue;
+    // A ball is a sphere about the vertical through its middle: a body whose floor box (capsule radii
+    // included, moved by the push so far) stays farther from that line than the radius and kSurelyApart is
+    // clear of it, as depth_at would find capsule by capsule (each depth is 0 for a capsule any distance
+    // out). A character standing at its ball is told apart here on most ticks.
+    if (ball && glm::length(glm::clamp(at, body_low + push, body_high + push) - at) > ball_floor_reach(solids_[k]) + kSurelyApart) {
+      continue;
+    }
     glm::vec2 n = forward_of(o.spec.heading);
     if (ball && glm::length(c.position - at) > 1e-4f) n = glm::normalize(c.position - at);  // away from it
     if (glm::dot(c.position - at, n) < 0.0f) n = -n;
