@@ -48,6 +48,7 @@ void BalanceScratch::resize(int joints, int parts) {
   rotations.resize(n);
   trial_rotations.resize(n);
   for (auto* v : {&centroids, &trial_centroids, &start_centroids, &style, &part_gradient}) v->resize(m);
+  smooth_term.resize(m);
   for (auto* v : {&base, &local, &trial_local, &offset, &step_rotation}) v->resize(static_cast<size_t>(kMaxOptimizedJoints));
 }
 
@@ -139,8 +140,12 @@ glm::vec3 model_center_of_mass(const BalanceModel& model, const glm::vec3* centr
   return com.vec();
 }
 
-BalanceCost balance_cost(const BalanceModel& model, const BalanceParams& params, const BalanceTargets& targets,
-                         const glm::vec3* centroids) {
+namespace {
+
+// balance_cost, also writing each part's smoothness term (Eq. 8-9, after the 1/n) to smooth_terms when
+// given (and the targets have a history).
+BalanceCost balance_cost_with_terms(const BalanceModel& model, const BalanceParams& params, const BalanceTargets& targets,
+                                    const glm::vec3* centroids, float* smooth_terms) {
   const float e = params.norm_smoothing;
   const size_t n = model.parts.size();
   const float inv_n = 1.0f / static_cast<float>(n);
@@ -162,11 +167,20 @@ BalanceCost balance_cost(const BalanceModel& model, const BalanceParams& params,
   if (targets.previous && targets.before_previous) {
     for (size_t i = 0; i < n; ++i) {
       const V3 a = acceleration(V3::load(centroids[i]), targets.previous[i], targets.before_previous[i]);
-      cost.smooth += smooth_norm(dot(a, a), e) * inv_n;  // Eq. 8-9
+      const float term = smooth_norm(dot(a, a), e) * inv_n;  // Eq. 8-9
+      cost.smooth += term;
+      if (smooth_terms) smooth_terms[i] = term;
     }
   }
   cost.total = params.w_b * cost.balance + params.w_s * cost.style + params.w_m * cost.smooth;  // Eq. 10
   return cost;
+}
+
+}  // namespace
+
+BalanceCost balance_cost(const BalanceModel& model, const BalanceParams& params, const BalanceTargets& targets,
+                         const glm::vec3* centroids) {
+  return balance_cost_with_terms(model, params, targets, centroids, nullptr);
 }
 
 void balance_gradient(const Skeleton& skeleton, const BalanceModel& model, const BalanceParams& params,
@@ -442,24 +456,19 @@ BalanceResult optimize_balance(const Skeleton& skeleton, const BalanceModel& mod
   if (!kinematics_given) forward_kinematics(skeleton, pose, s.positions, &s.rotations);
   // The posture's centroids are the style targets (Eq. 7's p_i(t) is this very posture).
   std::copy(targets.style, targets.style + model.parts.size(), s.centroids.begin());
-  BalanceCost current = balance_cost(model, params, targets, targets.style);
+  BalanceCost current = balance_cost_with_terms(model, params, targets, targets.style, s.smooth_term.data());
   result.before = current;
   result.after = current;
-  // The cost of the parts that never move (their style and smoothness terms stay as they are).
+  // The cost of the parts that never move (their style and smoothness terms stay as they are): the moved
+  // parts' terms, as the cost just took them, taken back out.
   BalanceCost fixed = current;
   {
-    const float e = params.norm_smoothing;
     const float inv_n = 1.0f / static_cast<float>(model.parts.size());
+    const float style_at_target = smooth_norm(0.0f, params.norm_smoothing) * inv_n;
     const bool history = targets.previous && targets.before_previous;
-    const float style_at_target = smooth_norm(0.0f, e) * inv_n;  // each part is at its style target
     for (int i : model.moved_parts) {
-      const size_t ii = static_cast<size_t>(i);
-      const V3 centroid = V3::load(s.centroids[ii]);
-      fixed.style -= style_at_target;
-      if (history) {
-        const V3 acc = acceleration(centroid, targets.previous[ii], targets.before_previous[ii]);
-        fixed.smooth -= smooth_norm(dot(acc, acc), e) * inv_n;
-      }
+      fixed.style -= style_at_target;  // each part is at its style target
+      if (history) fixed.smooth -= s.smooth_term[static_cast<size_t>(i)];
     }
   }
   V3 fixed_com_sum = V3::load(current.com);  // the centroids are the style targets, whose COM the cost took

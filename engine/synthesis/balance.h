@@ -68,6 +68,7 @@ struct BalanceScratch {
   std::vector<glm::vec3> start_centroids;             // centroids where this frame's descent started
   std::vector<glm::vec3> style;                       // the blended posture's centroids (Eq. 7's targets)
   std::vector<glm::vec3> part_gradient;               // dC/d(centroid)
+  std::vector<float> smooth_term;                     // each part's Eq. 8-9 term at the blended posture
   std::vector<glm::vec3> joint_point_gradient;        // dC/d(joint position)
   std::vector<glm::vec3> end_point_gradient;          // dC/d(End Site position)
   std::vector<glm::vec3> subtree_force, subtree_torque;

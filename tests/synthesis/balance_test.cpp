@@ -185,6 +185,41 @@ TEST_CASE("the optimizer lowers the cost, brings the COM toward the support cent
   CHECK(short_run.after.com_distance <= short_run.before.com_distance);
 }
 
+TEST_CASE("with a history, the reported cost is the cost of the posture returned, Eq. 8-9 included") {
+  // The optimizer keeps the terms of the parts it never moves aside (style and smoothness) and adds those
+  // of the parts it moves: its reported cost must be what balance_cost gives for the posture it returns.
+  Fixture f;
+  BalanceParams params;
+  params.max_part_shift = 0.0f;
+  params.max_shift_speed = 0.0f;
+  Pose pose = leaning_pose(f);
+  const std::vector<glm::vec3> style = centroids_of(f, pose);
+  // Two earlier frames: the body drifting 2 cm and then 3 cm forward, with some parts further, so that
+  // every part's acceleration (and smoothness term) is its own.
+  std::vector<glm::vec3> previous = style, before_previous = style;
+  for (size_t i = 0; i < style.size(); ++i) {
+    const float k = static_cast<float>(i);
+    previous[i] -= glm::vec3(0.001f * k, 0.0f, 0.03f);
+    before_previous[i] -= glm::vec3(0.0f, 0.002f * k, 0.05f);
+  }
+  BalanceTargets targets;
+  targets.support_centre = {0.0f, 0.05f};
+  targets.style = style.data();
+  targets.previous = previous.data();
+  targets.before_previous = before_previous.data();
+  BalanceScratch s;
+  s.resize(f.n, f.parts);
+  const BalanceResult result = optimize_balance(*f.skeleton, f.model, params, targets, pose, s);
+  REQUIRE(result.steps >= 1);
+  const BalanceCost before = balance_cost(f.model, params, targets, style.data());
+  CHECK(result.before.smooth == before.smooth);
+  CHECK(before.smooth > 0.01f);
+  const BalanceCost returned = balance_cost(f.model, params, targets, centroids_of(f, pose).data());
+  CHECK(returned.smooth == doctest::Approx(result.after.smooth).epsilon(1e-4));
+  CHECK(returned.style == doctest::Approx(result.after.style).epsilon(1e-4));
+  CHECK(returned.total == doctest::Approx(result.after.total).epsilon(1e-4));
+}
+
 TEST_CASE("the trust region bounds how far and how fast the optimizer moves the body parts") {
   Fixture f;
   BalanceParams params;  // defaults: max_part_shift 6 cm, max_shift_speed 0.3 m/s
