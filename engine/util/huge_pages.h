@@ -1,6 +1,6 @@
 // Backing the heap with 2 MB pages. A crowd's thousands of worlds each touch a few kilobytes per tick,
 // spread over hundreds of megabytes of heap: with 4 KB pages nearly every world the tick reaches costs a
-// TLB miss (a page walk, doubly long in a virtual machine), and 2 MB pages leave a few hundred pages for
+// TLB miss (a page walk, longer still in a virtual machine), and 2 MB pages leave a few hundred pages for
 // the whole crowd. Linux only; elsewhere, or where the kernel declines, nothing changes. Memory contents
 // never change either way, so results do not depend on it.
 #pragma once
