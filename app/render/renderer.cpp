@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "app/render/culling.h"
 #include "app/render/palette.h"
 #include "app/render/shader.h"
 #include "engine/world/object_solids.h"
@@ -315,6 +316,9 @@ Renderer::Renderer(const RenderSettings& settings) : settings_(settings) {
     // Light bodies: a capsule of 6 slices and one ring per end (36 triangles against 560).
     light_index_count_ = upload_capsule_mesh(6, 1, light_vao_, light_vbo_, light_ibo_);
     bind_instances(light_instances_);
+    // Light bodies far away: 4 slices (24 triangles).
+    distant_index_count_ = upload_capsule_mesh(4, 1, distant_vao_, distant_vbo_, distant_ibo_);
+    bind_instances(distant_instances_);
   }
   // Boxes: per-vertex position + normal, per-instance model matrix (4 columns) and colour/glow.
   {
@@ -401,9 +405,9 @@ Renderer::~Renderer() {
   for (GLuint p : programs) glDeleteProgram(p);
   const GLuint buffers[] = {capsule_vbo_, capsule_ibo_, capsule_instances_, flagged_instances_, box_vbo_, box_ibo_, box_instances_,
                             ground_vbo_, receiver_vbo_, marker_vbo_, marker_instances_, skin_block_,
-                            light_vbo_, light_ibo_, light_instances_};
+                            light_vbo_, light_ibo_, light_instances_, distant_vbo_, distant_ibo_, distant_instances_};
   glDeleteBuffers(static_cast<GLsizei>(std::size(buffers)), buffers);
-  const GLuint arrays[] = {capsule_vao_, flagged_vao_, box_vao_, ground_vao_, receiver_vao_, marker_vao_, light_vao_};
+  const GLuint arrays[] = {capsule_vao_, flagged_vao_, box_vao_, ground_vao_, receiver_vao_, marker_vao_, light_vao_, distant_vao_};
   glDeleteVertexArrays(static_cast<GLsizei>(std::size(arrays)), arrays);
   if (shadow_fbo_) glDeleteFramebuffers(1, &shadow_fbo_);
   if (shadow_texture_) glDeleteTextures(1, &shadow_texture_);
@@ -453,10 +457,7 @@ void Renderer::prepare(const Scene& scene) {
   skinned_draws_.resize(draws);
   primitives_ = build_primitives(scene, skinned, volumes_);
   focus_ = scene.focus;
-  upload(capsule_instances_, primitives_.capsules);
   upload(flagged_instances_, primitives_.flagged);
-  upload(light_instances_, primitives_.light_capsules);
-  upload(box_instances_, primitives_.boxes);
   upload(marker_instances_, primitives_.markers);
   // The shadow camera: orthographic, looking down the light direction at the focus.
   const glm::vec3 centre(focus_.x, 0.0f, focus_.z);
@@ -469,32 +470,59 @@ void Renderer::prepare(const Scene& scene) {
   shadow_rects_ = shadow_receiver_rects(scene, primitives_, settings_.light_dir, kMaxShadowRects, {centre.x, centre.z}, reach);
 }
 
+void Renderer::upload_visible(const glm::mat4& view_proj, const glm::vec3* eye) {
+  distant_.clear();
+  if (!settings_.cull) {
+    visible_.capsules = primitives_.capsules;
+    visible_.light_capsules = primitives_.light_capsules;
+    visible_.boxes = primitives_.boxes;
+  } else {
+    const ClipVolume volume = eye ? ClipVolume(view_proj, *eye, settings_.fog_end) : ClipVolume(view_proj);
+    keep_visible(primitives_.capsules, volume, visible_.capsules);
+    if (eye) {
+      keep_visible(primitives_.light_capsules, volume, *eye, settings_.distant_capsules_from, visible_.light_capsules, distant_);
+    } else {
+      keep_visible(primitives_.light_capsules, volume, visible_.light_capsules);
+    }
+    keep_visible(primitives_.boxes, volume, visible_.boxes);
+  }
+  upload(capsule_instances_, visible_.capsules);
+  upload(light_instances_, visible_.light_capsules);
+  upload(distant_instances_, distant_);
+  upload(box_instances_, visible_.boxes);
+}
+
 void Renderer::draw_capsule_bodies(GLuint program, const glm::mat4& view_proj) {
-  if (primitives_.capsules.empty() && primitives_.light_capsules.empty()) return;
+  if (visible_.capsules.empty() && visible_.light_capsules.empty() && distant_.empty()) return;
   glUseProgram(program);
   glUniformMatrix4fv(glGetUniformLocation(program, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
-  if (!primitives_.capsules.empty()) {
+  if (!visible_.capsules.empty()) {
     glBindVertexArray(capsule_vao_);
     glDrawElementsInstanced(GL_TRIANGLES, capsule_index_count_, GL_UNSIGNED_INT, nullptr,
-                            static_cast<GLsizei>(primitives_.capsules.size()));
-    triangles_ += capsule_index_count_ / 3 * static_cast<int>(primitives_.capsules.size());
+                            static_cast<GLsizei>(visible_.capsules.size()));
+    triangles_ += capsule_index_count_ / 3 * static_cast<int>(visible_.capsules.size());
   }
-  if (!primitives_.light_capsules.empty()) {
+  if (!visible_.light_capsules.empty()) {
     glBindVertexArray(light_vao_);
     glDrawElementsInstanced(GL_TRIANGLES, light_index_count_, GL_UNSIGNED_INT, nullptr,
-                            static_cast<GLsizei>(primitives_.light_capsules.size()));
-    triangles_ += light_index_count_ / 3 * static_cast<int>(primitives_.light_capsules.size());
+                            static_cast<GLsizei>(visible_.light_capsules.size()));
+    triangles_ += light_index_count_ / 3 * static_cast<int>(visible_.light_capsules.size());
+  }
+  if (!distant_.empty()) {
+    glBindVertexArray(distant_vao_);
+    glDrawElementsInstanced(GL_TRIANGLES, distant_index_count_, GL_UNSIGNED_INT, nullptr, static_cast<GLsizei>(distant_.size()));
+    triangles_ += distant_index_count_ / 3 * static_cast<int>(distant_.size());
   }
 }
 
 void Renderer::draw_boxes(GLuint program, const glm::mat4& view_proj) {
-  if (primitives_.boxes.empty()) return;
+  if (visible_.boxes.empty()) return;
   glUseProgram(program);
   glUniformMatrix4fv(glGetUniformLocation(program, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
   glBindVertexArray(box_vao_);
   glDrawElementsInstanced(GL_TRIANGLES, box_index_count_, GL_UNSIGNED_INT, nullptr,
-                          static_cast<GLsizei>(primitives_.boxes.size()));
-  triangles_ += box_index_count_ / 3 * static_cast<int>(primitives_.boxes.size());
+                          static_cast<GLsizei>(visible_.boxes.size()));
+  triangles_ += box_index_count_ / 3 * static_cast<int>(visible_.boxes.size());
 }
 
 void Renderer::draw_skinned_bodies(GLuint program, const glm::mat4& view_proj) {
@@ -535,6 +563,7 @@ void Renderer::shadow_pass() {
   glClear(GL_DEPTH_BUFFER_BIT);
   glEnable(GL_CULL_FACE);
   glCullFace(GL_FRONT);  // back faces into the map: less self-shadowing on lit sides
+  upload_visible(light_view_proj_, nullptr);
   draw_capsule_bodies(capsule_depth_program_, light_view_proj_);
   draw_skinned_bodies(skinned_depth_program_, light_view_proj_);
   draw_boxes(box_depth_program_, light_view_proj_);
@@ -550,7 +579,7 @@ void Renderer::set_lighting_uniforms(GLuint program, const glm::vec3& eye) {
   glUniform1f(glGetUniformLocation(program, "u_shadow_texel"), shadow_fbo_ ? 1.0f / settings_.shadow_map_size : 0.0f);
   glUniform3fv(glGetUniformLocation(program, "u_eye"), 1, glm::value_ptr(eye));
   glUniform3fv(glGetUniformLocation(program, "u_sky"), 1, glm::value_ptr(palette::kSky));
-  glUniform2f(glGetUniformLocation(program, "u_fog_range"), 30.0f, 90.0f);
+  glUniform2f(glGetUniformLocation(program, "u_fog_range"), settings_.fog_start, settings_.fog_end);
   glUniform3fv(glGetUniformLocation(program, "u_source_colour"), 1, glm::value_ptr(palette::kSource));
 }
 
@@ -590,6 +619,7 @@ void Renderer::main_pass(const Camera& camera, int x, int y, int width, int heig
   glEnable(GL_CULL_FACE);
   glCullFace(GL_BACK);
   glFrontFace(GL_CCW);
+  upload_visible(view_proj, &eye);
   set_lighting_uniforms(capsule_program_, eye);
   draw_capsule_bodies(capsule_program_, view_proj);
   // The flagged capsules before the skinned bodies, marking the stencil where they show, and no skin is

@@ -20,6 +20,7 @@
 
 #include "app/render/camera.h"
 #include "app/render/gl_api.h"
+#include "app/render/instances.h"
 #include "app/render/scene.h"
 #include "app/render/skinned_body.h"
 #include "engine/motion/body_volumes.h"
@@ -32,25 +33,17 @@ struct RenderSettings {
   int shadow_map_size = 1024;
   float shadow_extent = 7.0f;  // m: half-size of the square around Scene::focus that casts shadows
   glm::vec3 light_dir{0.45f, 1.0f, 0.35f};  // toward the light (normalized by the renderer)
+  // m from the eye: the fog starts, and is full (the sky's colour: nothing beyond is drawn).
+  float fog_start = 30.0f, fog_end = 90.0f;
+  // m from the eye: light bodies' capsules wholly beyond are drawn with 4 sides instead of 6 (24 triangles
+  // instead of 36); a bone there is at most a few pixels wide.
+  float distant_capsules_from = 25.0f;
+  // Leave out what a pass cannot show (culling.h); false draws every instance, for comparison.
+  bool cull = true;
   // Characters are drawn with their skeleton's skinned body (body_for_skeleton: the glTF character file
   // for the skeleton it was made for, our built body for other humanoids); false: capsules per bone.
   bool skinned_bodies = true;
   std::string character_path = default_character_path();  // glTF character tried first for every skeleton
-};
-
-// Per-instance data (matches the shaders' attributes).
-struct CapsuleInstance {
-  glm::vec4 a_radius;  // end A, radius
-  glm::vec4 b_glow;    // end B, source glow 0..1
-  glm::vec3 colour;
-};
-struct BoxInstance {
-  glm::mat4 model;
-  glm::vec4 colour_glow;
-};
-struct MarkerInstance {
-  glm::vec4 centre_outer;
-  glm::vec4 colour_inner;
 };
 
 // The primitives a scene turns into (public so that tests can check them without a GL context).
@@ -139,6 +132,10 @@ class Renderer {
 
  private:
   void set_lighting_uniforms(GLuint program, const glm::vec3& eye);
+  // The capsules and boxes a pass through this view-projection can show (culling.h) into the instance
+  // buffers the draws below read; seen from `eye` (the main pass), also without what lies beyond the fog,
+  // and with the light capsules beyond distant_capsules_from apart.
+  void upload_visible(const glm::mat4& view_proj, const glm::vec3* eye);
   void draw_capsule_bodies(GLuint program, const glm::mat4& view_proj);
   void draw_boxes(GLuint program, const glm::mat4& view_proj);
   void draw_skinned_bodies(GLuint program, const glm::mat4& view_proj);
@@ -158,6 +155,8 @@ class Renderer {
   RenderSettings settings_;
   std::vector<glm::vec4> covered_;
   ScenePrimitives primitives_;
+  ScenePrimitives visible_;  // of primitives_, what the pass being drawn can show (capsules, light capsules, boxes)
+  std::vector<CapsuleInstance> distant_;  // of the light capsules, those drawn with the distant mesh
   std::vector<BodyEntry> bodies_;
   BodyVolumesCache volumes_;
   std::vector<SkinnedDraw> skinned_draws_;
@@ -172,6 +171,8 @@ class Renderer {
   GLuint flagged_vao_ = 0, flagged_instances_ = 0;  // the same capsule mesh, the flagged instances
   GLuint light_vao_ = 0, light_vbo_ = 0, light_ibo_ = 0, light_instances_ = 0;  // the low-poly capsule
   int light_index_count_ = 0;
+  GLuint distant_vao_ = 0, distant_vbo_ = 0, distant_ibo_ = 0, distant_instances_ = 0;  // the 4-sided capsule
+  int distant_index_count_ = 0;
   GLuint box_vao_ = 0, box_vbo_ = 0, box_ibo_ = 0, box_instances_ = 0;
   GLuint ground_vao_ = 0, ground_vbo_ = 0, receiver_vao_ = 0, receiver_vbo_ = 0;
   GLuint ground_unshadowed_program_ = 0;
