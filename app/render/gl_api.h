@@ -98,7 +98,6 @@
   X(PFNGLSHADERSOURCEPROC, glShaderSource)                                \
   X(PFNGLSTENCILFUNCPROC, glStencilFunc)                                  \
   X(PFNGLSTENCILOPPROC, glStencilOp)                                      \
-  X(PFNGLTEXBUFFERPROC, glTexBuffer)                                      \
   X(PFNGLTEXIMAGE2DPROC, glTexImage2D)                                    \
   X(PFNGLTEXPARAMETERFVPROC, glTexParameterfv)                            \
   X(PFNGLTEXPARAMETERIPROC, glTexParameteri)                              \

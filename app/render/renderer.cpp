@@ -8,8 +8,6 @@
 #include <stdexcept>
 #include <string>
 
-#include "app/render/capsule_batch.h"
-#include "app/render/capsule_mesh.h"
 #include "app/render/culling.h"
 #include "app/render/palette.h"
 #include "app/render/shader.h"
@@ -20,6 +18,29 @@ namespace prep::render {
 using namespace prep::gl;
 
 namespace {
+
+constexpr float kPi = 3.14159265358979f;
+
+// A unit-radius capsule of zero length: rows of vertices from the bottom pole of end A to the top pole of
+// end B; the band between A's equator and B's equator is the cylinder.
+void capsule_mesh(int slices, int half_rings, std::vector<float>& vertices, std::vector<unsigned>& indices) {
+  const int rows = 2 * (half_rings + 1);
+  for (int row = 0; row < rows; ++row) {
+    const bool end_b = row > half_rings;
+    const int k = end_b ? row - half_rings - 1 : row;
+    const float latitude = end_b ? 0.5f * kPi * k / half_rings : -0.5f * kPi + 0.5f * kPi * k / half_rings;
+    for (int s = 0; s <= slices; ++s) {
+      const float longitude = 2.0f * kPi * s / slices;
+      vertices.insert(vertices.end(), {std::cos(latitude) * std::cos(longitude), std::sin(latitude),
+                                       std::cos(latitude) * std::sin(longitude), end_b ? 1.0f : 0.0f});
+    }
+  }
+  for (int row = 0; row + 1 < rows; ++row)
+    for (int s = 0; s < slices; ++s) {
+      const unsigned a = row * (slices + 1) + s, b = a + slices + 1;
+      indices.insert(indices.end(), {a, b, a + 1, a + 1, b, b + 1});
+    }
+}
 
 void cube_mesh(std::vector<float>& vertices, std::vector<unsigned>& indices) {
   const glm::vec3 normals[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
@@ -241,8 +262,6 @@ Renderer::Renderer(const RenderSettings& settings) : settings_(settings) {
   capsule_program_ = build_program("capsule.vert", "lit.frag");
   box_program_ = build_program("box.vert", "lit.frag");
   capsule_depth_program_ = build_program("capsule.vert", "depth.frag");
-  capsule_batch_program_ = build_program("capsule_batch.vert", "lit.frag");
-  capsule_batch_depth_program_ = build_program("capsule_batch.vert", "depth.frag");
   box_depth_program_ = build_program("box.vert", "depth.frag");
   ground_program_ = build_program("ground.vert", "ground.frag");
   ground_unshadowed_program_ = build_program("ground.vert", "ground_unshadowed.frag");
@@ -294,9 +313,12 @@ Renderer::Renderer(const RenderSettings& settings) : settings_(settings) {
     bind_float_attribute(1, 1, 4 * sizeof(float), 3 * sizeof(float), false);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, capsule_ibo_);
     bind_instances(flagged_instances_);
-    // Light bodies: capsules of 6 slices and one ring per end (36 triangles against 560), far away of 4
-    // slices (24), many to an instance.
-    batches_ = std::make_unique<CapsuleBatches>();
+    // Light bodies: a capsule of 6 slices and one ring per end (36 triangles against 560).
+    light_index_count_ = upload_capsule_mesh(6, 1, light_vao_, light_vbo_, light_ibo_);
+    bind_instances(light_instances_);
+    // Light bodies far away: 4 slices (24 triangles).
+    distant_index_count_ = upload_capsule_mesh(4, 1, distant_vao_, distant_vbo_, distant_ibo_);
+    bind_instances(distant_instances_);
   }
   // Boxes: per-vertex position + normal, per-instance model matrix (4 columns) and colour/glow.
   {
@@ -377,15 +399,15 @@ Renderer::Renderer(const RenderSettings& settings) : settings_(settings) {
 
 Renderer::~Renderer() {
   bodies_.clear();  // their GL objects go while the context is current
-  batches_.reset();
   const GLuint programs[] = {capsule_program_,       box_program_,       ground_program_,  ground_unshadowed_program_,
                              marker_program_,        capsule_depth_program_, box_depth_program_, skinned_program_,
-                             skinned_depth_program_, capsule_batch_program_, capsule_batch_depth_program_};
+                             skinned_depth_program_};
   for (GLuint p : programs) glDeleteProgram(p);
   const GLuint buffers[] = {capsule_vbo_, capsule_ibo_, capsule_instances_, flagged_instances_, box_vbo_, box_ibo_, box_instances_,
-                            ground_vbo_, receiver_vbo_, marker_vbo_, marker_instances_, skin_block_};
+                            ground_vbo_, receiver_vbo_, marker_vbo_, marker_instances_, skin_block_,
+                            light_vbo_, light_ibo_, light_instances_, distant_vbo_, distant_ibo_, distant_instances_};
   glDeleteBuffers(static_cast<GLsizei>(std::size(buffers)), buffers);
-  const GLuint arrays[] = {capsule_vao_, flagged_vao_, box_vao_, ground_vao_, receiver_vao_, marker_vao_};
+  const GLuint arrays[] = {capsule_vao_, flagged_vao_, box_vao_, ground_vao_, receiver_vao_, marker_vao_, light_vao_, distant_vao_};
   glDeleteVertexArrays(static_cast<GLsizei>(std::size(arrays)), arrays);
   if (shadow_fbo_) glDeleteFramebuffers(1, &shadow_fbo_);
   if (shadow_texture_) glDeleteTextures(1, &shadow_texture_);
@@ -465,20 +487,32 @@ void Renderer::upload_visible(const glm::mat4& view_proj, const glm::vec3* eye) 
     keep_visible(primitives_.boxes, volume, visible_.boxes);
   }
   upload(capsule_instances_, visible_.capsules);
-  batches_->upload(visible_.light_capsules, distant_);
+  upload(light_instances_, visible_.light_capsules);
+  upload(distant_instances_, distant_);
   upload(box_instances_, visible_.boxes);
 }
 
-void Renderer::draw_capsule_bodies(GLuint program, GLuint batch_program, const glm::mat4& view_proj) {
+void Renderer::draw_capsule_bodies(GLuint program, const glm::mat4& view_proj) {
+  if (visible_.capsules.empty() && visible_.light_capsules.empty() && distant_.empty()) return;
+  glUseProgram(program);
+  glUniformMatrix4fv(glGetUniformLocation(program, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
   if (!visible_.capsules.empty()) {
-    glUseProgram(program);
-    glUniformMatrix4fv(glGetUniformLocation(program, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
     glBindVertexArray(capsule_vao_);
     glDrawElementsInstanced(GL_TRIANGLES, capsule_index_count_, GL_UNSIGNED_INT, nullptr,
                             static_cast<GLsizei>(visible_.capsules.size()));
     triangles_ += capsule_index_count_ / 3 * static_cast<int>(visible_.capsules.size());
   }
-  triangles_ += batches_->draw(batch_program, view_proj, kCapsuleDataUnit);
+  if (!visible_.light_capsules.empty()) {
+    glBindVertexArray(light_vao_);
+    glDrawElementsInstanced(GL_TRIANGLES, light_index_count_, GL_UNSIGNED_INT, nullptr,
+                            static_cast<GLsizei>(visible_.light_capsules.size()));
+    triangles_ += light_index_count_ / 3 * static_cast<int>(visible_.light_capsules.size());
+  }
+  if (!distant_.empty()) {
+    glBindVertexArray(distant_vao_);
+    glDrawElementsInstanced(GL_TRIANGLES, distant_index_count_, GL_UNSIGNED_INT, nullptr, static_cast<GLsizei>(distant_.size()));
+    triangles_ += distant_index_count_ / 3 * static_cast<int>(distant_.size());
+  }
 }
 
 void Renderer::draw_boxes(GLuint program, const glm::mat4& view_proj) {
@@ -530,7 +564,7 @@ void Renderer::shadow_pass() {
   glEnable(GL_CULL_FACE);
   glCullFace(GL_FRONT);  // back faces into the map: less self-shadowing on lit sides
   upload_visible(light_view_proj_, nullptr);
-  draw_capsule_bodies(capsule_depth_program_, capsule_batch_depth_program_, light_view_proj_);
+  draw_capsule_bodies(capsule_depth_program_, light_view_proj_);
   draw_skinned_bodies(skinned_depth_program_, light_view_proj_);
   draw_boxes(box_depth_program_, light_view_proj_);
   glCullFace(GL_BACK);
@@ -587,8 +621,7 @@ void Renderer::main_pass(const Camera& camera, int x, int y, int width, int heig
   glFrontFace(GL_CCW);
   upload_visible(view_proj, &eye);
   set_lighting_uniforms(capsule_program_, eye);
-  set_lighting_uniforms(capsule_batch_program_, eye);
-  draw_capsule_bodies(capsule_program_, capsule_batch_program_, view_proj);
+  draw_capsule_bodies(capsule_program_, view_proj);
   // The flagged capsules before the skinned bodies, marking the stencil where they show, and no skin is
   // drawn there: the skin wraps the bones more loosely than the capsules (a flagged capsule a few
   // millimetres thicker would still be inside it), yet the capsule is what went in. Obstacles and the

@@ -19,7 +19,6 @@
 #include <vector>
 
 #include "app/render/camera.h"
-#include "app/render/capsule_batch.h"
 #include "app/render/gl_api.h"
 #include "app/render/instances.h"
 #include "app/render/scene.h"
@@ -137,8 +136,7 @@ class Renderer {
   // buffers the draws below read; seen from `eye` (the main pass), also without what lies beyond the fog,
   // and with the light capsules beyond distant_capsules_from apart.
   void upload_visible(const glm::mat4& view_proj, const glm::vec3* eye);
-  // The capsules with `program` (capsule.vert) and the light bodies' with `batch_program` (capsule_batch.vert).
-  void draw_capsule_bodies(GLuint program, GLuint batch_program, const glm::mat4& view_proj);
+  void draw_capsule_bodies(GLuint program, const glm::mat4& view_proj);
   void draw_boxes(GLuint program, const glm::mat4& view_proj);
   void draw_skinned_bodies(GLuint program, const glm::mat4& view_proj);
   void draw_flagged(const glm::mat4& view_proj);
@@ -159,8 +157,6 @@ class Renderer {
   ScenePrimitives primitives_;
   ScenePrimitives visible_;  // of primitives_, what the pass being drawn can show (capsules, light capsules, boxes)
   std::vector<CapsuleInstance> distant_;  // of the light capsules, those drawn with the distant mesh
-  std::unique_ptr<CapsuleBatches> batches_;  // draws the light capsules
-  static constexpr int kCapsuleDataUnit = 1;  // the texture unit of their data (0 is the shadow map)
   std::vector<BodyEntry> bodies_;
   BodyVolumesCache volumes_;
   std::vector<SkinnedDraw> skinned_draws_;
@@ -173,7 +169,10 @@ class Renderer {
   GLuint skinned_program_ = 0, skinned_depth_program_ = 0, skin_block_ = 0;
   GLuint capsule_vao_ = 0, capsule_vbo_ = 0, capsule_ibo_ = 0, capsule_instances_ = 0;
   GLuint flagged_vao_ = 0, flagged_instances_ = 0;  // the same capsule mesh, the flagged instances
-  GLuint capsule_batch_program_ = 0, capsule_batch_depth_program_ = 0;
+  GLuint light_vao_ = 0, light_vbo_ = 0, light_ibo_ = 0, light_instances_ = 0;  // the low-poly capsule
+  int light_index_count_ = 0;
+  GLuint distant_vao_ = 0, distant_vbo_ = 0, distant_ibo_ = 0, distant_instances_ = 0;  // the 4-sided capsule
+  int distant_index_count_ = 0;
   GLuint box_vao_ = 0, box_vbo_ = 0, box_ibo_ = 0, box_instances_ = 0;
   GLuint ground_vao_ = 0, ground_vbo_ = 0, receiver_vao_ = 0, receiver_vbo_ = 0;
   GLuint ground_unshadowed_program_ = 0;
