@@ -17,12 +17,11 @@
 #include "tests/support/paths.h"
 
 using namespace prep;
-using namespace prep::render;
 
 namespace {
 
-Camera looking_down_minus_z() {
-  Camera camera;
+render::Camera looking_down_minus_z() {
+  render::Camera camera;
   camera.target = {0.0f, 1.0f, 0.0f};
   camera.yaw = 0.0f;  // from +Z toward -Z
   camera.pitch = 0.0f;
@@ -33,11 +32,11 @@ Camera looking_down_minus_z() {
 }  // namespace
 
 TEST_CASE("clip volume: spheres wholly outside a plane or beyond the fog are excluded, any overlap kept") {
-  const Camera camera = looking_down_minus_z();
+  const render::Camera camera = looking_down_minus_z();
   const glm::vec3 eye = camera.eye();
   REQUIRE(std::fabs(eye.z - 10.0f) < 1e-3f);
   const glm::mat4 vp = camera.view_projection(16.0f / 9.0f);
-  const ClipVolume volume(vp);
+  const render::ClipVolume volume(vp);
   CHECK_FALSE(volume.excludes({0.0f, 1.0f, 0.0f}, 0.1f));    // straight ahead
   CHECK(volume.excludes({0.0f, 1.0f, 12.0f}, 0.5f));         // behind the eye
   CHECK_FALSE(volume.excludes({0.0f, 1.0f, 12.0f}, 2.5f));   // behind, but reaching past the eye
@@ -49,7 +48,7 @@ TEST_CASE("clip volume: spheres wholly outside a plane or beyond the fog are exc
   CHECK_FALSE(volume.excludes({-half_width - 0.5f / slant + 0.05f, 1.0f, 0.0f}, 0.5f));
   CHECK(volume.excludes({0.0f, 1.0f, 10.0f - camera.far_plane - 1.0f}, 0.5f));  // past the far plane
 
-  const ClipVolume fogged(vp, eye, 90.0f);
+  const render::ClipVolume fogged(vp, eye, 90.0f);
   CHECK(fogged.excludes({0.0f, 1.0f, 10.0f - 91.0f}, 0.5f));
   CHECK_FALSE(fogged.excludes({0.0f, 1.0f, 10.0f - 90.2f}, 0.5f));
   CHECK_FALSE(volume.excludes({0.0f, 1.0f, 10.0f - 91.0f}, 0.5f));  // without the fog's limit: in view
@@ -61,14 +60,14 @@ TEST_CASE("bounding spheres hold every point of their capsule or box") {
   for (int trial = 0; trial < 200; ++trial) {
     const glm::vec3 a(u(rng), u(rng), u(rng)), b(u(rng), u(rng), u(rng));
     const float radius = 0.05f + 0.1f * std::fabs(u(rng));
-    const CapsuleInstance capsule{glm::vec4(a, radius), glm::vec4(b, 0.0f), glm::vec3(1.0f)};
-    const BoundingSphere s = bounding_sphere(capsule);
+    const render::CapsuleInstance capsule{glm::vec4(a, radius), glm::vec4(b, 0.0f), glm::vec3(1.0f)};
+    const render::BoundingSphere s = render::bounding_sphere(capsule);
     for (const glm::vec3& end : {a, b}) CHECK(glm::length(end - s.centre) + radius <= s.radius + 1e-5f);
 
     glm::mat4 model(1.0f);
     for (int c = 0; c < 3; ++c) model[c] = glm::vec4(u(rng), u(rng), u(rng), 0.0f);  // any linear part, skew included
     model[3] = glm::vec4(u(rng), u(rng), u(rng), 1.0f);
-    const BoundingSphere box = bounding_sphere(BoxInstance{model, glm::vec4(1.0f)});
+    const render::BoundingSphere box = render::bounding_sphere(render::BoxInstance{model, glm::vec4(1.0f)});
     float farthest = 0.0f;
     for (int corner = 0; corner < 8; ++corner) {
       const glm::vec4 local((corner & 1) ? 0.5f : -0.5f, (corner & 2) ? 0.5f : -0.5f, (corner & 4) ? 0.5f : -0.5f, 1.0f);
@@ -82,9 +81,9 @@ TEST_CASE("bounding spheres hold every point of their capsule or box") {
 TEST_CASE("a frame drawn with culling is the frame drawn without it, with fewer triangles") {
   // Light bodies and boxes all around the camera: ahead, to the sides, behind, beyond the fog, and some
   // straddling the picture's left and right edges.
-  Scene scene;
+  render::Scene scene;
   const std::shared_ptr<const Skeleton> skeleton = test::stick_skeleton();
-  const Camera camera = looking_down_minus_z();
+  const render::Camera camera = looking_down_minus_z();
   const float aspect = 640.0f / 360.0f;
   std::vector<glm::vec3> places;
   for (int i = 0; i < 40; ++i) {
@@ -93,11 +92,11 @@ TEST_CASE("a frame drawn with culling is the frame drawn without it, with fewer 
     places.emplace_back(distance * std::sin(angle), 0.0f, 10.0f - distance * std::cos(angle));
   }
   for (const glm::vec3& at : places) {
-    SceneCharacter c = make_scene_character(skeleton, test::standing_clip(at).frames[0], glm::vec3(0.85f, 0.45f, 0.2f));
+    render::SceneCharacter c = render::make_scene_character(skeleton, test::standing_clip(at).frames[0], glm::vec3(0.85f, 0.45f, 0.2f));
     c.light = true;
     scene.characters.push_back(c);
-    SceneObject box;
-    box.type = ObjectType::Box;
+    render::SceneObject box;
+    box.type = render::ObjectType::Box;
     box.position = at + glm::vec3(0.6f, 0.0f, 0.0f);
     box.size = {0.3f, 0.5f, 0.3f};
     scene.objects.push_back(box);
@@ -113,8 +112,8 @@ TEST_CASE("a frame drawn with culling is the frame drawn without it, with fewer 
                              centre + glm::vec3(along * half_width, half_height + offset, 0.0f),
                              centre + glm::vec3(along * half_width, -half_height - offset, 0.0f)};
     for (const glm::vec3& p : at) {
-      SceneObject box;
-      box.type = ObjectType::Box;
+      render::SceneObject box;
+      box.type = render::ObjectType::Box;
       box.position = p - glm::vec3(0.0f, 0.15f, 0.0f);  // a box stands on its position: its centre at p
       box.size = glm::vec3(0.3f);
       scene.objects.push_back(box);
@@ -122,20 +121,20 @@ TEST_CASE("a frame drawn with culling is the frame drawn without it, with fewer 
   }
   scene.focus = {0.0f, 0.0f, 0.0f};
 
-  OsMesaContext context(640, 360);
-  Image with, without;
+  render::OsMesaContext context(640, 360);
+  render::Image with, without;
   int triangles_with = 0, triangles_without = 0;
   for (const bool cull : {true, false}) {
-    RenderSettings settings;
+    render::RenderSettings settings;
     settings.cull = cull;
     settings.distant_capsules_from = INFINITY;  // the same mesh for every light capsule: the frames may be compared
-    Renderer renderer(settings);
+    render::Renderer renderer(settings);
     renderer.draw(scene, camera, 0, 0, 640, 360);
     (cull ? with : without) = context.read_pixels();
     (cull ? triangles_with : triangles_without) = renderer.triangles_last_frame();
   }
   std::filesystem::create_directories(test::tmp_dir());
-  write_png(with, test::tmp_dir() + "/culled.png");  // for a look by eye
+  render::write_png(with, test::tmp_dir() + "/culled.png");  // for a look by eye
   REQUIRE(with.width == without.width);
   CHECK(with.rgba == without.rgba);
   CHECK(triangles_with < triangles_without / 2);
