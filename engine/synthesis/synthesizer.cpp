@@ -177,7 +177,7 @@ void Synthesizer::stage_ik(const SynthesisInput& in, SynthesisState& state, Synt
   }
   const FootPoints loco_feet = foot_points(*skeleton_, body_, loco.positions, loco.rotations);
   std::array<float, 2> heel_speed{0.0f, 0.0f}, toe_speed{0.0f, 0.0f};
-  if (state.history > 0 && in.dt > 0.0f) {
+  if (state.locomotion_feet_known && in.dt > 0.0f) {
     const glm::vec3 shift = s.locomotion_jump;  // a re-aligned stream moves every point alike
     for (size_t side = 0; side < 2; ++side) {
       heel_speed[side] = glm::length(loco_feet.heel[side] - shift - state.previous_locomotion_feet.heel[side]) / in.dt;
@@ -185,6 +185,7 @@ void Synthesizer::stage_ik(const SynthesisInput& in, SynthesisState& state, Synt
     }
   }
   state.previous_locomotion_feet = loco_feet;
+  state.locomotion_feet_known = true;
   s.pinned = select_pinned_points(in.contacts, heel_speed, toe_speed, params_.ik);
 
   if (!params_.ik.enabled) {
@@ -198,6 +199,18 @@ void Synthesizer::stage_ik(const SynthesisInput& in, SynthesisState& state, Synt
 void Synthesizer::stage_balance(const SynthesisInput& in, SynthesisState& state, SynthesisScratch& s, Pose& out,
                                 SynthesisReport* report) const {
   // Needs s.positions / s.rotations = forward kinematics of `out` (stage_ik leaves them so).
+  const BalanceParams& bp = params_.balance;
+  if (!bp.enabled) {
+    // Nothing below shapes the pose. The centroid history of Eq. 8-9 restarts when balance is turned on
+    // again, as for a new character, rather than being kept up for an optimizer that is off; the support
+    // polygon and COM are taken only for a report that asks for them.
+    state.history = 0;
+    state.correction.valid = false;
+    if (!report) {
+      s.support_of_output = false;
+      return;
+    }
+  }
   const FootPoints feet = foot_points(*skeleton_, body_, s.positions, s.rotations);
   support_polygon(feet, in.contacts, params_.contacts, s.support);
   const size_t n_parts = balance_model_.parts.size();
@@ -212,7 +225,6 @@ void Synthesizer::stage_balance(const SynthesisInput& in, SynthesisState& state,
   }
   const bool has_support = !s.support.empty();
   if (has_support) targets.support_centre = s.support.center();
-  const BalanceParams& bp = params_.balance;
   const bool optimize = bp.enabled && has_support && in.alpha >= bp.alpha_threshold && bp.max_steps > 0;
 
   BalanceResult result;
@@ -260,10 +272,10 @@ void Synthesizer::stage_balance(const SynthesisInput& in, SynthesisState& state,
     }
   }
 
-  s.support_of_output = true;
+  s.support_of_output = true;  // and `state.previous` holds its centroids (the World reads them)
   std::copy(state.previous.begin(), state.previous.begin() + static_cast<long>(n_parts), state.before_previous.begin());
   std::copy(final_centroids, final_centroids + n_parts, state.previous.begin());
-  state.history = std::min(state.history + 1, 2);
+  state.history = bp.enabled ? std::min(state.history + 1, 2) : 0;
 }
 
 void Synthesizer::step(const SynthesisInput& in, SynthesisState& state, SynthesisScratch& scratch, Pose& out,

@@ -40,6 +40,7 @@ struct SynthesisState {
   FootPlants feet;                           // planted feet (foot IK)
   float root_drop = 0.0f;                    // pelvis lowered by the foot IK to keep planted feet in reach (m)
   FootPoints previous_locomotion_feet{};     // the locomotion's heel and toe points at the previous frame
+  bool locomotion_feet_known = false;        // ... once a frame has been through the IK stage
   int history = 0;                           // optimized frames remembered (0-2), for Eq. 8-9
   std::array<glm::vec3, kMaxBodyParts> previous{};         // body-part centroids at t-1
   std::array<glm::vec3, kMaxBodyParts> before_previous{};  // ... at t-2

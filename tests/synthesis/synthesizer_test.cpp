@@ -220,3 +220,73 @@ TEST_CASE("synthesizers of two skeletons interleaved on one thread give what eac
     REQUIRE(b.frames[f].root_position == b_alone.frames[f].root_position);
   }
 }
+
+TEST_CASE("with balance off a report changes no pose, and turning balance on again reads no stale centroids") {
+  // Balance off, the balance stage has nothing to shape: without a report it does nothing, with one it takes
+  // the support polygon and the pose's centroids (the World reads them). Either way the pose is the one
+  // balance on gives below its alpha threshold. The smoothness history restarts when balance comes back on,
+  // as for a new character.
+  Params off;
+  off.balance.enabled = false;
+  const MotionSet set = make_builtin_motion_set(off);
+  const Synthesizer synth_off(set, off), synth_on(set, Params{});
+  const int walk = find_cyclic_clip(set, Role::Walk);
+  REQUIRE(walk >= 0);
+  const int target = set.find("duck");
+  REQUIRE(target >= 0);
+  const MotionClip& tc = set.clips[static_cast<size_t>(target)];
+  const Pose reference = tc.clip.frames[static_cast<size_t>(scan_reference_frame(set, tc, off))];
+  LocomotionLoop loop(set.clips[static_cast<size_t>(walk)]);
+  SynthesisState reported, quiet, below_threshold;
+  SynthesisScratch scratch = synth_off.make_scratch();
+  Pose locomotion, out_reported = synth_off.make_pose(), out_quiet = synth_off.make_pose(),
+                   out_below = synth_off.make_pose();
+  const auto input = [&](float alpha) {
+    SynthesisInput in;
+    loop.next(locomotion, in.contacts);
+    in.locomotion = &locomotion;
+    in.reference = &reference;
+    in.alpha = alpha;
+    in.dt = 1.0f / 60.0f;
+    return in;
+  };
+  const float below = 0.9f * Params{}.balance.alpha_threshold;
+  int centroids_given = 0;
+  for (int frame = 0; frame < 60; ++frame) {
+    CAPTURE(frame);
+    const SynthesisInput in = input(below);
+    SynthesisReport report;
+    synth_off.step(in, reported, scratch, out_reported, &report);
+    REQUIRE(!report.balanced);
+    if (scratch.support_of_output) {  // (the floor stage lifted no toe) the World takes this pose's centroids
+      ++centroids_given;
+      std::vector<glm::vec3> positions, centroids(synth_off.balance_model().parts.size());
+      std::vector<glm::quat> rotations;
+      forward_kinematics(*set.skeleton, out_reported, positions, &rotations);
+      part_centroids(*set.skeleton, synth_off.balance_model(), positions, rotations, centroids.data());
+      for (size_t p = 0; p < centroids.size(); ++p) REQUIRE(reported.previous[p] == centroids[p]);
+    }
+    synth_off.step(in, quiet, scratch, out_quiet);
+    REQUIRE(!scratch.support_of_output);
+    REQUIRE(out_quiet.rotations == out_reported.rotations);
+    REQUIRE(out_quiet.root_position == out_reported.root_position);
+    synth_on.step(in, below_threshold, scratch, out_below);
+    REQUIRE(out_below.rotations == out_reported.rotations);
+    REQUIRE(out_below.root_position == out_reported.root_position);
+  }
+  CHECK(centroids_given > 10);
+  // Balance on again: a state whose remembered centroids are nonsense gives the same frames as this one.
+  SynthesisState garbled = reported;
+  for (glm::vec3& c : garbled.previous) c = glm::vec3(50.0f, -3.0f, 7.0f);
+  for (glm::vec3& c : garbled.before_previous) c = glm::vec3(-20.0f, 9.0f, 1.0f);
+  int balanced = 0;
+  for (int frame = 0; frame < 3; ++frame) {
+    const SynthesisInput in = input(0.8f);
+    SynthesisReport report;
+    synth_on.step(in, reported, scratch, out_reported, &report);
+    balanced += report.balanced;
+    synth_on.step(in, garbled, scratch, out_quiet);
+    CHECK(out_quiet.rotations == out_reported.rotations);
+  }
+  CHECK(balanced == 3);
+}
