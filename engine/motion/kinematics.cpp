@@ -22,6 +22,45 @@ void forward_kinematics(const Skeleton& skeleton, const Pose& pose, std::vector<
   }
 }
 
+JointPass::JointPass(const Skeleton& skeleton, const std::vector<int>& joints) {
+  for (int j : joints) {
+    const Joint& joint = skeleton.joints[static_cast<size_t>(j)];
+    if (joint.parent < 0) {
+      roots_.push_back(static_cast<std::uint32_t>(j));
+    } else {
+      steps_.push_back({static_cast<std::uint32_t>(j), static_cast<std::uint32_t>(joint.parent), joint.offset});
+    }
+  }
+}
+
+void JointPass::run(const Pose& pose, std::vector<glm::vec3>& positions, std::vector<glm::quat>& rotations) const {
+  for (std::uint32_t r : roots_) {
+    rotations[r] = pose.rotations[r];
+    positions[r] = pose.root_position;
+  }
+  for (const Step& s : steps_) {
+    place_joint(positions[s.parent], rotations[s.parent], s.offset, pose.rotations[s.joint], positions[s.joint],
+                rotations[s.joint]);
+  }
+}
+
+void JointPass::run_two(const Pose& pose_a, std::vector<glm::vec3>& positions_a, std::vector<glm::quat>& rotations_a,
+                        const Pose& pose_b, std::vector<glm::vec3>& positions_b,
+                        std::vector<glm::quat>& rotations_b) const {
+  for (std::uint32_t r : roots_) {
+    rotations_a[r] = pose_a.rotations[r];
+    positions_a[r] = pose_a.root_position;
+    rotations_b[r] = pose_b.rotations[r];
+    positions_b[r] = pose_b.root_position;
+  }
+  for (const Step& s : steps_) {
+    place_joint(positions_a[s.parent], rotations_a[s.parent], s.offset, pose_a.rotations[s.joint], positions_a[s.joint],
+                rotations_a[s.joint]);
+    place_joint(positions_b[s.parent], rotations_b[s.parent], s.offset, pose_b.rotations[s.joint], positions_b[s.joint],
+                rotations_b[s.joint]);
+  }
+}
+
 glm::vec3 end_site_position(const Skeleton& skeleton, int joint, const std::vector<glm::vec3>& world_positions,
                             const std::vector<glm::quat>& world_rotations) {
   const size_t j = static_cast<size_t>(joint);

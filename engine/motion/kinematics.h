@@ -3,6 +3,7 @@
 
 #include <glm/gtc/quaternion.hpp>
 #include <glm/vec3.hpp>
+#include <cstdint>
 #include <vector>
 
 #include "engine/motion/pose.h"
@@ -26,6 +27,28 @@ inline void place_joint(const glm::vec3& parent_position, const glm::quat& paren
 // Output vectors are resized to the joint count (no allocation once they have the size).
 void forward_kinematics(const Skeleton& skeleton, const Pose& pose, std::vector<glm::vec3>& world_positions,
                         std::vector<glm::quat>* world_rotations = nullptr);
+
+// A partial forward-kinematics pass over listed joints (parents before children, each listed with its
+// ancestors), laid out for its loop: each joint beside its parent's index and its offset (a Joint also
+// carries its name and End Site: a cache line each), the roots apart since they are placed from the
+// pose's root position. run() is forward_kinematics' arithmetic for those joints, to the bit.
+class JointPass {
+ public:
+  JointPass() = default;
+  JointPass(const Skeleton& skeleton, const std::vector<int>& joints);
+  void run(const Pose& pose, std::vector<glm::vec3>& positions, std::vector<glm::quat>& rotations) const;
+  // run() of two poses joint by joint: two independent chains in flight.
+  void run_two(const Pose& pose_a, std::vector<glm::vec3>& positions_a, std::vector<glm::quat>& rotations_a,
+               const Pose& pose_b, std::vector<glm::vec3>& positions_b, std::vector<glm::quat>& rotations_b) const;
+
+ private:
+  struct Step {
+    std::uint32_t joint = 0, parent = 0;
+    glm::vec3 offset{0.0f};
+  };
+  std::vector<std::uint32_t> roots_;
+  std::vector<Step> steps_;
+};
 
 // World position of joint j's End Site, given the world positions and rotations from forward_kinematics.
 glm::vec3 end_site_position(const Skeleton& skeleton, int joint, const std::vector<glm::vec3>& world_positions,

@@ -10,36 +10,6 @@
 namespace prep {
 namespace {
 
-// One joint of a partial forward kinematics pass: from its parent's world frame, or the pose's root.
-inline void place_listed_joint(const Skeleton& skeleton, size_t i, const Pose& pose, std::vector<glm::vec3>& positions,
-                               std::vector<glm::quat>& rotations) {
-  const int parent = skeleton.joints[i].parent;
-  if (parent < 0) {
-    rotations[i] = pose.rotations[i];
-    positions[i] = pose.root_position;
-    return;
-  }
-  const size_t p = static_cast<size_t>(parent);
-  place_joint(positions[p], rotations[p], skeleton.joints[i].offset, pose.rotations[i], positions[i], rotations[i]);
-}
-
-// Forward kinematics of the listed joints only (parents before children, each listed with its ancestors):
-// the same arithmetic as forward_kinematics.
-void chain_kinematics(const Skeleton& skeleton, const std::vector<int>& joints, const Pose& pose,
-                      std::vector<glm::vec3>& positions, std::vector<glm::quat>& rotations) {
-  for (int j : joints) place_listed_joint(skeleton, static_cast<size_t>(j), pose, positions, rotations);
-}
-
-// chain_kinematics of two poses over the same joints, joint by joint: two independent chains in flight.
-void chain_kinematics_of_two(const Skeleton& skeleton, const std::vector<int>& joints, const Pose& pose_a,
-                             std::vector<glm::vec3>& positions_a, std::vector<glm::quat>& rotations_a,
-                             const Pose& pose_b, std::vector<glm::vec3>& positions_b, std::vector<glm::quat>& rotations_b) {
-  for (int j : joints) {
-    place_listed_joint(skeleton, static_cast<size_t>(j), pose_a, positions_a, rotations_a);
-    place_listed_joint(skeleton, static_cast<size_t>(j), pose_b, positions_b, rotations_b);
-  }
-}
-
 // Kinematics of the locomotion's legs, per thread and joint count: read for its feet only, so no character
 // keeps them.
 struct LocomotionKinematics {
@@ -84,6 +54,7 @@ Synthesizer::Synthesizer(std::shared_ptr<const Skeleton> skeleton, BodyMap body,
     throw std::invalid_argument("Synthesizer: the mass model has more body parts than kMaxBodyParts");
   }
   curves_ = make_blend_curves(*skeleton_, body_, params_.blend);
+  std::vector<int> leg_joints, all_joints, foot_joints, balance_stale;
   std::vector<char> leg(static_cast<size_t>(skeleton_->size()), 0);
   for (const LegChain& chain : body_.legs) {
     for (int j : {chain.hip, chain.knee, chain.ankle, chain.toe, chain.toe_tip_joint}) {
@@ -91,12 +62,9 @@ Synthesizer::Synthesizer(std::shared_ptr<const Skeleton> skeleton, BodyMap body,
     }
   }
   for (int j = 0; j < skeleton_->size(); ++j) {
-    if (leg[static_cast<size_t>(j)]) leg_joints_.push_back(j);
-    all_joints_.push_back(j);
+    if (leg[static_cast<size_t>(j)]) leg_joints.push_back(j);
+    all_joints.push_back(j);
   }
-  // The kinematics passes below run level by level (breadth_first): the two legs side by side.
-  leg_joints_ = breadth_first(*skeleton_, leg_joints_);
-  all_joints_ = breadth_first(*skeleton_, all_joints_);
   std::vector<char> foot(static_cast<size_t>(skeleton_->size()), 0);
   for (const LegChain& chain : body_.legs) {
     if (chain.ankle >= 0) foot[static_cast<size_t>(chain.ankle)] = 1;
@@ -104,7 +72,7 @@ Synthesizer::Synthesizer(std::shared_ptr<const Skeleton> skeleton, BodyMap body,
   for (int j = 0; j < skeleton_->size(); ++j) {
     const int parent = skeleton_->joints[static_cast<size_t>(j)].parent;
     if (parent >= 0 && foot[static_cast<size_t>(parent)]) foot[static_cast<size_t>(j)] = 1;
-    if (foot[static_cast<size_t>(j)]) foot_joints_.push_back(j);
+    if (foot[static_cast<size_t>(j)]) foot_joints.push_back(j);
   }
   // Below an optimized joint but read by no body part: the optimizer's trial kinematics skip them.
   std::vector<char> below(static_cast<size_t>(skeleton_->size()), 0);
@@ -112,10 +80,13 @@ Synthesizer::Synthesizer(std::shared_ptr<const Skeleton> skeleton, BodyMap body,
     const size_t jj = static_cast<size_t>(j);
     const int parent = skeleton_->joints[jj].parent;
     below[jj] = balance_model_.optimized_index[jj] >= 0 || (parent >= 0 && below[static_cast<size_t>(parent)]);
-    if (below[jj] && !balance_model_.is_moved[jj]) balance_stale_.push_back(j);
+    if (below[jj] && !balance_model_.is_moved[jj]) balance_stale.push_back(j);
   }
-  foot_joints_ = breadth_first(*skeleton_, foot_joints_);
-  balance_stale_ = breadth_first(*skeleton_, balance_stale_);
+  // The kinematics passes run level by level (breadth_first): the two legs side by side.
+  leg_pass_ = JointPass(*skeleton_, breadth_first(*skeleton_, leg_joints));
+  all_pass_ = JointPass(*skeleton_, breadth_first(*skeleton_, all_joints));
+  foot_pass_ = JointPass(*skeleton_, breadth_first(*skeleton_, foot_joints));
+  balance_stale_pass_ = JointPass(*skeleton_, breadth_first(*skeleton_, balance_stale));
 }
 
 void Synthesizer::set_params(const Params& params) {
@@ -170,10 +141,9 @@ void Synthesizer::stage_ik(const SynthesisInput& in, SynthesisState& state, Synt
   // locomotion's legs and the blended ones are taken together.
   LocomotionKinematics& loco = thread_locomotion_kinematics(s.positions.size());
   if (params_.ik.enabled) {
-    chain_kinematics_of_two(*skeleton_, leg_joints_, *in.locomotion, loco.positions, loco.rotations, out, s.positions,
-                            s.rotations);
+    leg_pass_.run_two(*in.locomotion, loco.positions, loco.rotations, out, s.positions, s.rotations);
   } else {
-    chain_kinematics(*skeleton_, leg_joints_, *in.locomotion, loco.positions, loco.rotations);
+    leg_pass_.run(*in.locomotion, loco.positions, loco.rotations);
   }
   const FootPoints loco_feet = foot_points(*skeleton_, body_, loco.positions, loco.rotations);
   std::array<float, 2> heel_speed{0.0f, 0.0f}, toe_speed{0.0f, 0.0f};
@@ -189,11 +159,11 @@ void Synthesizer::stage_ik(const SynthesisInput& in, SynthesisState& state, Synt
   s.pinned = select_pinned_points(in.contacts, heel_speed, toe_speed, params_.ik);
 
   if (!params_.ik.enabled) {
-    chain_kinematics(*skeleton_, all_joints_, out, s.positions, s.rotations);
+    all_pass_.run(out, s.positions, s.rotations);
     return;
   }
   apply_foot_ik(*skeleton_, body_, params_.ik, s.pinned, in.dt, out, s.positions, s.rotations, state.feet, state.root_drop);
-  chain_kinematics(*skeleton_, all_joints_, out, s.positions, s.rotations);
+  all_pass_.run(out, s.positions, s.rotations);
 }
 
 void Synthesizer::stage_balance(const SynthesisInput& in, SynthesisState& state, SynthesisScratch& s, Pose& out,
@@ -240,7 +210,7 @@ void Synthesizer::stage_balance(const SynthesisInput& in, SynthesisState& state,
     // (fingers, eyes): those are brought up to date, and stage_floor needs no pass of its own.
     s.positions.swap(b.positions);
     s.rotations.swap(b.rotations);
-    chain_kinematics(*skeleton_, balance_stale_, out, s.positions, s.rotations);
+    balance_stale_pass_.run(out, s.positions, s.rotations);
   } else {
     state.correction.valid = false;  // the next optimized frame starts from its blended posture
   }
@@ -298,10 +268,10 @@ void Synthesizer::stage_floor(SynthesisScratch& s, Pose& out, bool kinematics_gi
   // pitched up about their ankles only from the ankles down (the joints above are as they were).
   const int turned = keep_toes_above_floor(*skeleton_, body_, out, s.positions, s.rotations);
   if (out.root_position.y != root_height) {
-    chain_kinematics(*skeleton_, all_joints_, out, s.positions, s.rotations);
+    all_pass_.run(out, s.positions, s.rotations);
     s.support_of_output = false;
   } else if (turned > 0) {
-    chain_kinematics(*skeleton_, foot_joints_, out, s.positions, s.rotations);
+    foot_pass_.run(out, s.positions, s.rotations);
     s.support_of_output = false;
   }
 }

@@ -19,6 +19,7 @@
 #include "engine/motion/body_map.h"
 #include "engine/motion/center_of_mass.h"
 #include "engine/motion/contacts.h"
+#include "engine/motion/kinematics.h"
 #include "engine/motion/motion_set.h"
 #include "engine/motion/pose.h"
 #include "engine/motion/skeleton.h"
@@ -135,11 +136,11 @@ class Synthesizer {
   Params params_;
   BlendCurves curves_;
   BalanceModel balance_model_;
-  // Joint lists for partial kinematics passes, each level by level (breadth_first):
-  std::vector<int> all_joints_;     // every joint
-  std::vector<int> leg_joints_;     // the leg chains (hip to toe tip) and their ancestors
-  std::vector<int> foot_joints_;    // the ankles and every joint below them
-  std::vector<int> balance_stale_;  // joints whose kinematics the balance optimizer leaves stale
+  // Partial kinematics passes, each level by level (breadth_first), over:
+  JointPass all_pass_;            // every joint
+  JointPass leg_pass_;            // the leg chains (hip to toe tip) and their ancestors
+  JointPass foot_pass_;           // the ankles and every joint below them
+  JointPass balance_stale_pass_;  // joints whose kinematics the balance optimizer leaves stale
 };
 
 }  // namespace prep

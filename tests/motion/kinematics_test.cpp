@@ -161,3 +161,64 @@ TEST_CASE("breadth_first: level by level, parents first, and a pass in that orde
     REQUIRE(std::memcmp(rotations.data(), expected_rotations.data(), sizeof(glm::quat) * rotations.size()) == 0);
   }
 }
+
+TEST_CASE("a joint pass gives forward kinematics to the bit at the joints it lists and touches no other") {
+  // root -> pelvis -> {left hip -> knee -> ankle, right hip -> knee -> ankle}, spine -> head.
+  Skeleton s;
+  s.joints.push_back({"root", -1, {0, 0, 0}, false, {}});
+  s.joints.push_back({"pelvis", 0, {0, 0.1f, 0}, false, {}});
+  s.joints.push_back({"l_hip", 1, {0.1f, -0.05f, 0}, false, {}});
+  s.joints.push_back({"l_knee", 2, {0, -0.42f, 0}, false, {}});
+  s.joints.push_back({"l_ankle", 3, {0, -0.43f, 0}, false, {}});
+  s.joints.push_back({"r_hip", 1, {-0.1f, -0.05f, 0}, false, {}});
+  s.joints.push_back({"r_knee", 5, {0, -0.42f, 0}, false, {}});
+  s.joints.push_back({"r_ankle", 6, {0, -0.43f, 0}, false, {}});
+  s.joints.push_back({"spine", 1, {0, 0.2f, 0}, false, {}});
+  s.joints.push_back({"head", 8, {0, 0.5f, 0}, false, {}});
+  const JointPass whole(s, breadth_first(s, {0, 1, 2, 3, 4, 5, 6, 7, 8, 9}));
+  const JointPass legs(s, breadth_first(s, {0, 1, 2, 3, 4, 5, 6, 7}));
+  const JointPass below_knees(s, {4, 7});  // the knees' kinematics already in place
+
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  Pose a(s.size()), b(s.size());
+  const size_t n = static_cast<size_t>(s.size());
+  const glm::vec3 untouched(7.0f, 7.0f, 7.0f);
+  std::vector<glm::vec3> expected_a, expected_b;
+  std::vector<glm::quat> expected_rotations_a, expected_rotations_b;
+  for (int k = 0; k < 50; ++k) {
+    for (Pose* pose : {&a, &b}) {
+      pose->root_position = {u(rng), 1.0f + 0.1f * u(rng), u(rng)};
+      for (glm::quat& q : pose->rotations) q = glm::normalize(glm::quat(u(rng), u(rng), u(rng), u(rng)));
+    }
+    forward_kinematics(s, a, expected_a, &expected_rotations_a);
+    forward_kinematics(s, b, expected_b, &expected_rotations_b);
+    std::vector<glm::vec3> positions(n, untouched), positions_b(n, untouched);
+    std::vector<glm::quat> rotations(n), rotations_b(n);
+    whole.run(a, positions, rotations);
+    REQUIRE(std::memcmp(positions.data(), expected_a.data(), sizeof(glm::vec3) * n) == 0);
+    REQUIRE(std::memcmp(rotations.data(), expected_rotations_a.data(), sizeof(glm::quat) * n) == 0);
+
+    positions.assign(n, untouched);
+    legs.run_two(a, positions, rotations, b, positions_b, rotations_b);
+    for (size_t j = 0; j < n; ++j) {
+      CAPTURE(j);
+      if (j < 8) {
+        REQUIRE(positions[j] == expected_a[j]);
+        REQUIRE(rotations[j] == expected_rotations_a[j]);
+        REQUIRE(positions_b[j] == expected_b[j]);
+        REQUIRE(rotations_b[j] == expected_rotations_b[j]);
+      } else {
+        REQUIRE(positions[j] == untouched);
+        REQUIRE(positions_b[j] == untouched);
+      }
+    }
+    // The ankles again from the knees left by the pass of the legs: no root listed, none placed.
+    positions[0] = untouched;
+    positions[4] = positions[7] = untouched;
+    below_knees.run(a, positions, rotations);
+    REQUIRE(positions[0] == untouched);
+    REQUIRE(positions[4] == expected_a[4]);
+    REQUIRE(positions[7] == expected_a[7]);
+  }
+}
