@@ -34,30 +34,36 @@ JointPass::JointPass(const Skeleton& skeleton, const std::vector<int>& joints) {
 }
 
 void JointPass::run(const Pose& pose, std::vector<glm::vec3>& positions, std::vector<glm::quat>& rotations) const {
-  for (std::uint32_t r : roots_) {
-    rotations[r] = pose.rotations[r];
-    positions[r] = pose.root_position;
+  // The buffers' addresses held in locals: stores through them cannot move the vectors, so the loop does
+  // not read the addresses again for every joint.
+  glm::vec3* const p = positions.data();
+  glm::quat* const r = rotations.data();
+  const glm::quat* const local = pose.rotations.data();
+  for (std::uint32_t root : roots_) {
+    r[root] = local[root];
+    p[root] = pose.root_position;
   }
-  for (const Step& s : steps_) {
-    place_joint(positions[s.parent], rotations[s.parent], s.offset, pose.rotations[s.joint], positions[s.joint],
-                rotations[s.joint]);
-  }
+  for (const Step& s : steps_) place_joint(p[s.parent], r[s.parent], s.offset, local[s.joint], p[s.joint], r[s.joint]);
 }
 
 void JointPass::run_two(const Pose& pose_a, std::vector<glm::vec3>& positions_a, std::vector<glm::quat>& rotations_a,
                         const Pose& pose_b, std::vector<glm::vec3>& positions_b,
                         std::vector<glm::quat>& rotations_b) const {
-  for (std::uint32_t r : roots_) {
-    rotations_a[r] = pose_a.rotations[r];
-    positions_a[r] = pose_a.root_position;
-    rotations_b[r] = pose_b.rotations[r];
-    positions_b[r] = pose_b.root_position;
+  glm::vec3* const pa = positions_a.data();
+  glm::quat* const ra = rotations_a.data();
+  const glm::quat* const la = pose_a.rotations.data();
+  glm::vec3* const pb = positions_b.data();
+  glm::quat* const rb = rotations_b.data();
+  const glm::quat* const lb = pose_b.rotations.data();
+  for (std::uint32_t root : roots_) {
+    ra[root] = la[root];
+    pa[root] = pose_a.root_position;
+    rb[root] = lb[root];
+    pb[root] = pose_b.root_position;
   }
   for (const Step& s : steps_) {
-    place_joint(positions_a[s.parent], rotations_a[s.parent], s.offset, pose_a.rotations[s.joint], positions_a[s.joint],
-                rotations_a[s.joint]);
-    place_joint(positions_b[s.parent], rotations_b[s.parent], s.offset, pose_b.rotations[s.joint], positions_b[s.joint],
-                rotations_b[s.joint]);
+    place_joint(pa[s.parent], ra[s.parent], s.offset, la[s.joint], pa[s.joint], ra[s.joint]);
+    place_joint(pb[s.parent], rb[s.parent], s.offset, lb[s.joint], pb[s.joint], rb[s.joint]);
   }
 }
 
