@@ -17,12 +17,14 @@ namespace {
 inline float smooth_norm(float squared, float e) { return std::sqrt(squared + e * e) - e; }
 
 // A body part's centroid: c = (1 - f) * proximal + f * distal, computed as p + f (distal - p).
-inline V3 centroid_of(const Skeleton& skeleton, const BalanceModel::Part& part, const std::vector<glm::vec3>& positions,
-                      const std::vector<glm::quat>& rotations) {
+// (Raw pointers: the loops calling it store through SSE2 stores, which may alias anything, so a vector's
+// address would be read again after each one.)
+inline V3 centroid_of(const Joint* joints, const BalanceModel::Part& part, const glm::vec3* positions,
+                      const glm::quat* rotations) {
   const size_t d = static_cast<size_t>(part.distal);
   const V3 p = V3::load(positions[static_cast<size_t>(part.proximal)]);
   const V3 distal = part.distal_is_end_site
-                        ? V3::load(positions[d]) + rotate(rotations[d], V3::load(skeleton.joints[d].end_site))
+                        ? V3::load(positions[d]) + rotate(rotations[d], V3::load(joints[d].end_site))
                         : V3::load(positions[d]);
   return p + part.f * (distal - p);
 }
@@ -131,7 +133,11 @@ BalanceModel BalanceModel::build(const Skeleton& skeleton, const BodyMap& body, 
 
 void part_centroids(const Skeleton& skeleton, const BalanceModel& model, const std::vector<glm::vec3>& positions,
                     const std::vector<glm::quat>& rotations, glm::vec3* out) {
-  for (size_t i = 0; i < model.parts.size(); ++i) centroid_of(skeleton, model.parts[i], positions, rotations).store(out[i]);
+  const Joint* const joints = skeleton.joints.data();
+  const BalanceModel::Part* const parts = model.parts.data();
+  const glm::vec3* const p = positions.data();
+  const glm::quat* const r = rotations.data();
+  for (size_t i = 0, n = model.parts.size(); i < n; ++i) centroid_of(joints, parts[i], p, r).store(out[i]);
 }
 
 glm::vec3 model_center_of_mass(const BalanceModel& model, const glm::vec3* centroids) {
@@ -264,21 +270,29 @@ namespace {
 // does not change), with the optimized joints' local rotations taken from `local`.
 void moved_kinematics(const Skeleton& skeleton, const BalanceModel& model, const Pose& pose, const glm::quat* local,
                       std::vector<glm::vec3>& positions, std::vector<glm::quat>& rotations) {
+  // The addresses held in locals: place_joint's SSE2 stores may alias anything (centroid_of).
+  const Joint* const joints = skeleton.joints.data();
+  const int* const optimized_index = model.optimized_index.data();
+  const glm::quat* const blended = pose.rotations.data();
+  glm::vec3* const x = positions.data();
+  glm::quat* const r = rotations.data();
   for (int j : model.moved) {
     const size_t jj = static_cast<size_t>(j);
-    const Joint& joint = skeleton.joints[jj];
+    const Joint& joint = joints[jj];
     const size_t p = static_cast<size_t>(joint.parent);  // never the root: the root is not upper body
-    const int k = model.optimized_index[jj];
-    const glm::quat& q = k >= 0 ? local[static_cast<size_t>(k)] : pose.rotations[jj];
-    place_joint(positions[p], rotations[p], joint.offset, q, positions[jj], rotations[jj]);
+    const int k = optimized_index[jj];
+    const glm::quat& q = k >= 0 ? local[static_cast<size_t>(k)] : blended[jj];
+    place_joint(x[p], r[p], joint.offset, q, x[jj], r[jj]);
   }
 }
 
 void moved_centroids(const Skeleton& skeleton, const BalanceModel& model, const std::vector<glm::vec3>& positions,
                      const std::vector<glm::quat>& rotations, glm::vec3* out) {
-  for (int i : model.moved_parts) {
-    centroid_of(skeleton, model.parts[static_cast<size_t>(i)], positions, rotations).store(out[i]);
-  }
+  const Joint* const joints = skeleton.joints.data();
+  const BalanceModel::Part* const parts = model.parts.data();
+  const glm::vec3* const p = positions.data();
+  const glm::quat* const r = rotations.data();
+  for (int i : model.moved_parts) centroid_of(joints, parts[static_cast<size_t>(i)], p, r).store(out[i]);
 }
 
 // The COM from the parts that never move (fixed_com, their weighted sum) and the moved parts.
@@ -329,15 +343,31 @@ void moved_gradient(const Skeleton& skeleton, const BalanceModel& model, const B
   const glm::vec2 u = d / std::sqrt(glm::dot(d, d) + e * e);
   const V3 balance_dir = V3::load(params.w_b * glm::vec3(u.x, 0.0f, u.y));
   const bool history = targets.previous && targets.before_previous;
+  // The addresses held in locals: the SSE2 stores below may alias anything (centroid_of).
+  const Joint* const joints = skeleton.joints.data();
+  const BalanceModel::Part* const parts = model.parts.data();
+  const char* const is_moved = model.is_moved.data();
+  const char* const end_point = model.end_point.data();
+  const float* const end_mass = model.end_mass.data();
+  const float* const joint_mass = model.joint_mass.data();
+  const glm::vec3* const positions = s.positions.data();
+  const glm::quat* const rotations = s.rotations.data();
+  glm::vec3* const joint_point_gradient = s.joint_point_gradient.data();
+  glm::vec3* const end_point_gradient = s.end_point_gradient.data();
+  glm::vec3* const subtree_force = s.subtree_force.data();
+  glm::vec3* const subtree_torque = s.subtree_torque.data();
+  glm::vec3* const subtree_moment = s.subtree_moment.data();
+  float* const subtree_mass = s.subtree_mass.data();
+  glm::vec3* const joint_gradient = s.joint_gradient.data();
   for (int j : model.moved) {
     const size_t jj = static_cast<size_t>(j);
-    s.joint_point_gradient[jj] = s.end_point_gradient[jj] = s.subtree_force[jj] = s.subtree_torque[jj] =
-        s.subtree_moment[jj] = glm::vec3(0.0f);
-    s.subtree_mass[jj] = 0.0f;
+    joint_point_gradient[jj] = end_point_gradient[jj] = subtree_force[jj] = subtree_torque[jj] = subtree_moment[jj] =
+        glm::vec3(0.0f);
+    subtree_mass[jj] = 0.0f;
   }
   for (int i : model.moved_parts) {
     const size_t ii = static_cast<size_t>(i);
-    const BalanceModel::Part& part = model.parts[ii];
+    const BalanceModel::Part& part = parts[ii];
     const V3 centroid = V3::load(c[ii]);
     V3 g = part.mass * balance_dir;
     const V3 st = centroid - V3::load(targets.style[ii]);
@@ -347,39 +377,40 @@ void moved_gradient(const Skeleton& skeleton, const BalanceModel& model, const B
       g += (params.w_m * inv_n / std::sqrt(dot(acc, acc) + e * e)) * acc;
     }
     const size_t prox = static_cast<size_t>(part.proximal), dist = static_cast<size_t>(part.distal);
-    if (model.is_moved[prox]) (V3::load(s.joint_point_gradient[prox]) + (1.0f - part.f) * g).store(s.joint_point_gradient[prox]);
-    if (model.is_moved[dist]) {
-      glm::vec3& point = (part.distal_is_end_site ? s.end_point_gradient : s.joint_point_gradient)[dist];
+    if (is_moved[prox]) (V3::load(joint_point_gradient[prox]) + (1.0f - part.f) * g).store(joint_point_gradient[prox]);
+    if (is_moved[dist]) {
+      glm::vec3& point = (part.distal_is_end_site ? end_point_gradient : joint_point_gradient)[dist];
       (V3::load(point) + part.f * g).store(point);
     }
   }
   // One backward pass (children come after their parents): a joint's subtree sums are complete when it is
   // reached; its own End Site joins first, as it turns with the joint.
+  const int* const moved = model.moved.data();
   for (size_t m = model.moved.size(); m-- > 0;) {
-    const size_t j = static_cast<size_t>(model.moved[m]);
-    const V3 x = V3::load(s.positions[j]);
-    V3 force = V3::load(s.subtree_force[j]), torque = V3::load(s.subtree_torque[j]);
-    V3 moment = V3::load(s.subtree_moment[j]);
-    float mass = s.subtree_mass[j];
-    if (model.end_point[j]) {
-      const V3 ge = V3::load(s.end_point_gradient[j]);
-      const V3 end = x + rotate(s.rotations[j], V3::load(skeleton.joints[j].end_site));
+    const size_t j = static_cast<size_t>(moved[m]);
+    const V3 x = V3::load(positions[j]);
+    V3 force = V3::load(subtree_force[j]), torque = V3::load(subtree_torque[j]);
+    V3 moment = V3::load(subtree_moment[j]);
+    float mass = subtree_mass[j];
+    if (end_point[j]) {
+      const V3 ge = V3::load(end_point_gradient[j]);
+      const V3 end = x + rotate(rotations[j], V3::load(joints[j].end_site));
       force += ge;
       torque += cross(end, ge);
-      mass += model.end_mass[j];
-      moment += model.end_mass[j] * end;
+      mass += end_mass[j];
+      moment += end_mass[j] * end;
     }
-    (torque - cross(x, force)).store(s.joint_gradient[j]);
+    (torque - cross(x, force)).store(joint_gradient[j]);
     moment -= mass * x;  // now Q_j - M_j x_j (for com_response)
-    moment.store(s.subtree_moment[j]);
-    const size_t p = static_cast<size_t>(skeleton.joints[j].parent);
-    if (!model.is_moved[p]) continue;
-    const V3 gj = V3::load(s.joint_point_gradient[j]);
-    (V3::load(s.subtree_force[p]) + (force + gj)).store(s.subtree_force[p]);
-    (V3::load(s.subtree_torque[p]) + (torque + cross(x, gj))).store(s.subtree_torque[p]);
-    const float mass_here = mass + model.joint_mass[j];
-    s.subtree_mass[p] += mass_here;
-    (V3::load(s.subtree_moment[p]) + (moment + mass_here * x)).store(s.subtree_moment[p]);
+    moment.store(subtree_moment[j]);
+    const size_t p = static_cast<size_t>(joints[j].parent);
+    if (!is_moved[p]) continue;
+    const V3 gj = V3::load(joint_point_gradient[j]);
+    (V3::load(subtree_force[p]) + (force + gj)).store(subtree_force[p]);
+    (V3::load(subtree_torque[p]) + (torque + cross(x, gj))).store(subtree_torque[p]);
+    const float mass_here = mass + joint_mass[j];
+    subtree_mass[p] += mass_here;
+    (V3::load(subtree_moment[p]) + (moment + mass_here * x)).store(subtree_moment[p]);
   }
 }
 
@@ -400,24 +431,32 @@ inline void small_rotation_unnormalized(glm::vec3 v, glm::quat& out) {
 // and its origin's linear velocity, and a centroid mixes the velocities of its two points. Used to keep the
 // first trial of a line search inside the trust region (one pass instead of wasted trial postures).
 float step_motion(const Skeleton& skeleton, const BalanceModel& model, BalanceScratch& s) {
+  // The addresses held in locals: the SSE2 stores below may alias anything (centroid_of).
+  const Joint* const joints = skeleton.joints.data();
+  const char* const is_moved = model.is_moved.data();
+  const int* const optimized_index = model.optimized_index.data();
+  const glm::vec3* const positions = s.positions.data();
+  const glm::quat* const rotations = s.rotations.data();
+  const glm::vec3* const joint_gradient = s.joint_gradient.data();
+  glm::vec3* const angular = s.angular.data();
+  glm::vec3* const linear = s.linear.data();
   for (int j : model.moved) {
     const size_t jj = static_cast<size_t>(j);
-    const size_t p = static_cast<size_t>(skeleton.joints[jj].parent);
+    const size_t p = static_cast<size_t>(joints[jj].parent);
     V3 w = V3::zero(), v = V3::zero();
-    if (model.is_moved[p]) {
-      w = V3::load(s.angular[p]);
-      v = V3::load(s.linear[p]) + cross(w, V3::load(s.positions[jj]) - V3::load(s.positions[p]));
+    if (is_moved[p]) {
+      w = V3::load(angular[p]);
+      v = V3::load(linear[p]) + cross(w, V3::load(positions[jj]) - V3::load(positions[p]));
     }
-    if (model.optimized_index[jj] >= 0) w -= V3::load(s.joint_gradient[jj]);
-    w.store(s.angular[jj]);
-    v.store(s.linear[jj]);
+    if (optimized_index[jj] >= 0) w -= V3::load(joint_gradient[jj]);
+    w.store(angular[jj]);
+    v.store(linear[jj]);
   }
   const auto point_speed = [&](int j, bool end_site) {
     const size_t jj = static_cast<size_t>(j);
-    if (!model.is_moved[jj]) return V3::zero();
-    if (!end_site) return V3::load(s.linear[jj]);
-    return V3::load(s.linear[jj]) +
-           cross(V3::load(s.angular[jj]), rotate(s.rotations[jj], V3::load(skeleton.joints[jj].end_site)));
+    if (!is_moved[jj]) return V3::zero();
+    if (!end_site) return V3::load(linear[jj]);
+    return V3::load(linear[jj]) + cross(V3::load(angular[jj]), rotate(rotations[jj], V3::load(joints[jj].end_site)));
   };
   float largest2 = 0.0f;
   for (int i : model.moved_parts) {
