@@ -152,14 +152,19 @@ MassModel MassModel::build(const Skeleton& skeleton, const BodyMap& body) {
 void segment_centroids(const Skeleton& skeleton, const MassModel& model, const std::vector<glm::vec3>& world_positions,
                        const std::vector<glm::quat>& world_rotations, std::vector<glm::vec3>& out) {
   out.resize(model.segments.size());
-  for (size_t i = 0; i < model.segments.size(); ++i) {
-    const BodySegment& s = model.segments[i];
+  // The addresses held in locals: the SSE2 store may alias anything, and would have them read again.
+  const BodySegment* const segments = model.segments.data();
+  const Joint* const joints = skeleton.joints.data();
+  const glm::vec3* const positions = world_positions.data();
+  const glm::quat* const rotations = world_rotations.data();
+  glm::vec3* const centroids = out.data();
+  for (size_t i = 0, n = model.segments.size(); i < n; ++i) {
+    const BodySegment& s = segments[i];
     const size_t d = static_cast<size_t>(s.distal);
-    const V3 a = V3::load(world_positions[static_cast<size_t>(s.proximal)]);
-    const V3 b = s.distal_is_end_site
-                     ? V3::load(world_positions[d]) + rotate(world_rotations[d], V3::load(skeleton.joints[d].end_site))
-                     : V3::load(world_positions[d]);
-    (a + s.com_fraction * (b - a)).store(out[i]);  // the distal point: the joint, or its End Site
+    const V3 a = V3::load(positions[static_cast<size_t>(s.proximal)]);
+    const V3 b = s.distal_is_end_site ? V3::load(positions[d]) + rotate(rotations[d], V3::load(joints[d].end_site))
+                                      : V3::load(positions[d]);
+    (a + s.com_fraction * (b - a)).store(centroids[i]);  // the distal point: the joint, or its End Site
   }
 }
 

@@ -13,12 +13,18 @@ void forward_kinematics(const Skeleton& skeleton, const Pose& pose, std::vector<
   std::vector<glm::quat>& rot = world_rotations ? *world_rotations : scratch;
   rot.resize(n);
   if (n == 0) return;
-  rot[0] = pose.rotations[0];
-  world_positions[0] = pose.root_position;
+  // The addresses held in locals: place_joint's SSE2 stores may alias anything, and would have them read
+  // again for every joint.
+  const Joint* const joints = skeleton.joints.data();
+  const glm::quat* const local = pose.rotations.data();
+  glm::vec3* const x = world_positions.data();
+  glm::quat* const r = rot.data();
+  r[0] = local[0];
+  x[0] = pose.root_position;
   for (size_t i = 1; i < n; ++i) {
-    const Joint& j = skeleton.joints[i];
+    const Joint& j = joints[i];
     const size_t p = static_cast<size_t>(j.parent);
-    place_joint(world_positions[p], rot[p], j.offset, pose.rotations[i], world_positions[i], rot[i]);
+    place_joint(x[p], r[p], j.offset, local[i], x[i], r[i]);
   }
 }
 
