@@ -119,9 +119,13 @@ int MotionStream::clip_frame() const {
 }
 
 FrameContacts MotionStream::contacts() const {
-  const MotionClip& mc = graph_->set().clips[static_cast<size_t>(node())];
+  // node() and clip_frame() at once: the stream frame rounded and its piece found once.
+  const int f = static_cast<int>(std::lround(time_ * player_->fps()));
+  const Piece& p = piece_at(f);
+  const MotionClip& mc = graph_->set().clips[static_cast<size_t>(p.node)];
   if (mc.contacts.empty()) return FrameContacts{};
-  return mc.contacts[static_cast<size_t>(std::clamp(clip_frame(), 0, static_cast<int>(mc.contacts.size()) - 1))];
+  const int frame = std::clamp(p.first + (f - p.stream_first), 0, mc.clip.frame_count() - 1);
+  return mc.contacts[static_cast<size_t>(std::clamp(frame, 0, static_cast<int>(mc.contacts.size()) - 1))];
 }
 
 int MotionStream::queued_node() const { return pieces_.back().node; }
