@@ -1,7 +1,5 @@
 #include "engine/motion/kinematics.h"
 
-#include "engine/motion/quaternion_ops.h"
-
 namespace prep {
 
 void forward_kinematics(const Skeleton& skeleton, const Pose& pose, std::vector<glm::vec3>& world_positions,
@@ -71,12 +69,6 @@ void JointPass::run_two(const Pose& pose_a, std::vector<glm::vec3>& positions_a,
     place_joint(pa[s.parent], ra[s.parent], s.offset, la[s.joint], pa[s.joint], ra[s.joint]);
     place_joint(pb[s.parent], rb[s.parent], s.offset, lb[s.joint], pb[s.joint], rb[s.joint]);
   }
-}
-
-glm::vec3 end_site_position(const Skeleton& skeleton, int joint, const std::vector<glm::vec3>& world_positions,
-                            const std::vector<glm::quat>& world_rotations) {
-  const size_t j = static_cast<size_t>(joint);
-  return world_positions[j] + quat::rotate(world_rotations[j], skeleton.joints[j].end_site);
 }
 
 }  // namespace prep

@@ -51,8 +51,9 @@ class JointPass {
 };
 
 // World position of joint j's End Site, given the world positions and rotations from forward_kinematics.
-glm::vec3 end_site_position(const Skeleton& skeleton, int joint, const std::vector<glm::vec3>& world_positions,
-                            const std::vector<glm::quat>& world_rotations);
+// Inline: the IK, the floor stage and the support polygon take a few per character and frame.
+inline glm::vec3 end_site_position(const Skeleton& skeleton, int joint, const std::vector<glm::vec3>& world_positions,
+                                   const std::vector<glm::quat>& world_rotations);
 
 namespace kinematics_detail {
 
@@ -114,6 +115,20 @@ inline void place_joint(const glm::vec3& parent_position, const glm::quat& paren
 #else
   position = parent_position + parent_rotation * offset;
   rotation = parent_rotation * local;
+#endif
+}
+
+inline glm::vec3 end_site_position(const Skeleton& skeleton, int joint, const std::vector<glm::vec3>& world_positions,
+                                   const std::vector<glm::quat>& world_rotations) {
+  const size_t j = static_cast<size_t>(joint);
+#if defined(__SSE2__)
+  using namespace kinematics_detail;
+  glm::vec3 out;
+  store_vec3(out, _mm_add_ps(load_vec3(world_positions[j]),
+                             rotate(load_quat(world_rotations[j]), load_vec3(skeleton.joints[j].end_site))));
+  return out;
+#else
+  return world_positions[j] + world_rotations[j] * skeleton.joints[j].end_site;
 #endif
 }
 

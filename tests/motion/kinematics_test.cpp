@@ -222,3 +222,21 @@ TEST_CASE("a joint pass gives forward kinematics to the bit at the joints it lis
     REQUIRE(positions[7] == expected_a[7]);
   }
 }
+
+TEST_CASE("an End Site's position: the joint's plus its offset turned, glm's arithmetic to the bit") {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  const Skeleton s = three_joint_chain();
+  Pose pose(s.size());
+  std::vector<glm::vec3> positions;
+  std::vector<glm::quat> rotations;
+  for (int k = 0; k < 200; ++k) {
+    pose.root_position = {u(rng), 1.0f + u(rng), u(rng)};
+    for (glm::quat& q : pose.rotations) q = glm::normalize(glm::quat(u(rng), u(rng), u(rng), u(rng)));
+    forward_kinematics(s, pose, positions, &rotations);
+    // glm's vector rotation, v + 2 (w (q x v) + q x (q x v)), then the sum: each lane as SSE2 computes it.
+    const glm::vec3 expected = positions[2] + rotations[2] * s.joints[2].end_site;
+    const glm::vec3 got = end_site_position(s, 2, positions, rotations);
+    REQUIRE(std::memcmp(&got, &expected, sizeof got) == 0);
+  }
+}
