@@ -21,6 +21,21 @@ Skeleton three_joint_chain() {
   s.joints.push_back({"arm", 1, {0, 0, 2}, true, {0, 1, 0}});
   return s;
 }
+// root -> pelvis -> {left hip -> knee -> ankle, right hip -> knee -> ankle}, spine -> head.
+Skeleton legs_and_spine() {
+  Skeleton s;
+  s.joints.push_back({"root", -1, {0, 0, 0}, false, {}});
+  s.joints.push_back({"pelvis", 0, {0, 0.1f, 0}, false, {}});
+  s.joints.push_back({"l_hip", 1, {0.1f, -0.05f, 0}, false, {}});
+  s.joints.push_back({"l_knee", 2, {0, -0.42f, 0}, false, {}});
+  s.joints.push_back({"l_ankle", 3, {0, -0.43f, 0}, false, {}});
+  s.joints.push_back({"r_hip", 1, {-0.1f, -0.05f, 0}, false, {}});
+  s.joints.push_back({"r_knee", 5, {0, -0.42f, 0}, false, {}});
+  s.joints.push_back({"r_ankle", 6, {0, -0.43f, 0}, false, {}});
+  s.joints.push_back({"spine", 1, {0, 0.2f, 0}, false, {}});
+  s.joints.push_back({"head", 8, {0, 0.5f, 0}, false, {}});
+  return s;
+}
 void check_near(glm::vec3 a, glm::vec3 b) {
   CHECK(a.x == doctest::Approx(b.x).epsilon(1e-6));
   CHECK(a.y == doctest::Approx(b.y).epsilon(1e-6));
@@ -121,18 +136,7 @@ TEST_CASE("forward kinematics: a whole 43-joint body through place_joint stays w
 }
 
 TEST_CASE("breadth_first: level by level, parents first, and a pass in that order gives forward kinematics to the bit") {
-  // root -> pelvis -> {left hip -> knee -> ankle, right hip -> knee -> ankle}, spine -> head.
-  Skeleton s;
-  s.joints.push_back({"root", -1, {0, 0, 0}, false, {}});
-  s.joints.push_back({"pelvis", 0, {0, 0.1f, 0}, false, {}});
-  s.joints.push_back({"l_hip", 1, {0.1f, -0.05f, 0}, false, {}});
-  s.joints.push_back({"l_knee", 2, {0, -0.42f, 0}, false, {}});
-  s.joints.push_back({"l_ankle", 3, {0, -0.43f, 0}, false, {}});
-  s.joints.push_back({"r_hip", 1, {-0.1f, -0.05f, 0}, false, {}});
-  s.joints.push_back({"r_knee", 5, {0, -0.42f, 0}, false, {}});
-  s.joints.push_back({"r_ankle", 6, {0, -0.43f, 0}, false, {}});
-  s.joints.push_back({"spine", 1, {0, 0.2f, 0}, false, {}});
-  s.joints.push_back({"head", 8, {0, 0.5f, 0}, false, {}});
+  const Skeleton s = legs_and_spine();
   const std::vector<int> all = breadth_first(s, {0, 1, 2, 3, 4, 5, 6, 7, 8, 9});
   CHECK(all == std::vector<int>{0, 1, 2, 5, 8, 3, 6, 9, 4, 7});
   CHECK(breadth_first(s, {7, 3, 6, 4}) == std::vector<int>{3, 6, 4, 7});  // a subset keeps to its levels
@@ -163,18 +167,7 @@ TEST_CASE("breadth_first: level by level, parents first, and a pass in that orde
 }
 
 TEST_CASE("a joint pass gives forward kinematics to the bit at the joints it lists and touches no other") {
-  // root -> pelvis -> {left hip -> knee -> ankle, right hip -> knee -> ankle}, spine -> head.
-  Skeleton s;
-  s.joints.push_back({"root", -1, {0, 0, 0}, false, {}});
-  s.joints.push_back({"pelvis", 0, {0, 0.1f, 0}, false, {}});
-  s.joints.push_back({"l_hip", 1, {0.1f, -0.05f, 0}, false, {}});
-  s.joints.push_back({"l_knee", 2, {0, -0.42f, 0}, false, {}});
-  s.joints.push_back({"l_ankle", 3, {0, -0.43f, 0}, false, {}});
-  s.joints.push_back({"r_hip", 1, {-0.1f, -0.05f, 0}, false, {}});
-  s.joints.push_back({"r_knee", 5, {0, -0.42f, 0}, false, {}});
-  s.joints.push_back({"r_ankle", 6, {0, -0.43f, 0}, false, {}});
-  s.joints.push_back({"spine", 1, {0, 0.2f, 0}, false, {}});
-  s.joints.push_back({"head", 8, {0, 0.5f, 0}, false, {}});
+  const Skeleton s = legs_and_spine();
   const JointPass whole(s, breadth_first(s, {0, 1, 2, 3, 4, 5, 6, 7, 8, 9}));
   const JointPass legs(s, breadth_first(s, {0, 1, 2, 3, 4, 5, 6, 7}));
   const JointPass below_knees(s, {4, 7});  // the knees' kinematics already in place
