@@ -38,8 +38,8 @@ JointPass::JointPass(const Skeleton& skeleton, const std::vector<int>& joints) {
 }
 
 void JointPass::run(const Pose& pose, std::vector<glm::vec3>& positions, std::vector<glm::quat>& rotations) const {
-  // The buffers' addresses held in locals: stores through them cannot move the vectors, so the loop does
-  // not read the addresses again for every joint.
+  // The buffers' addresses held in locals: place_joint's SSE2 stores may alias anything, and would have
+  // them read again for every joint.
   glm::vec3* const p = positions.data();
   glm::quat* const r = rotations.data();
   const glm::quat* const local = pose.rotations.data();
