@@ -77,6 +77,7 @@ struct LegSolve {
   glm::quat r0, r1;   // the bend: at the hip and at the knee, in world
   V3 bent;            // hip to ankle, the knee bent
   glm::quat r2;       // the swing about the hip onto the target
+  glm::quat hip_world, knee_world;  // the hip's and knee's new world rotations
 };
 
 // How far the hip must reach: the target within the leg's softened reach.
@@ -132,23 +133,26 @@ void leg_swing(LegSolve& l) {
   l.r2 = rotation_between(l.bent, l.to_target);
 }
 
-// The new world rotations, then the local ones. The world rotations are unit quaternions (normalized
-// here), so their inverses are their conjugates. Returns the ankle position reached.
-glm::vec3 leg_rotations(const Skeleton& skeleton, Pose& pose, const std::vector<glm::quat>& wr,
-                        const glm::quat& foot_world, const LegSolve& l) {
+// The new world rotations, then the local ones, in two phases (see LegSolve). The world rotations are
+// unit quaternions (normalized here), so their inverses are their conjugates.
+void leg_world_rotations(const std::vector<glm::quat>& wr, LegSolve& l) {
+  const glm::quat r20 = quat::mul(l.r2, l.r0);
+  l.hip_world = quat::normalize(quat::mul(r20, wr[l.hip]));
+  l.knee_world = quat::normalize(quat::mul(quat::mul(r20, l.r1), wr[l.knee]));
+}
+// Returns the ankle position reached.
+glm::vec3 leg_local_rotations(const Skeleton& skeleton, Pose& pose, const std::vector<glm::quat>& wr,
+                              const glm::quat& foot_world, const LegSolve& l) {
   const int hip_parent = skeleton.joints[l.hip].parent;
   const glm::quat parent_world = hip_parent >= 0 ? wr[static_cast<size_t>(hip_parent)] : glm::quat(1, 0, 0, 0);
-  const glm::quat r20 = quat::mul(l.r2, l.r0);
-  const glm::quat hip_world = quat::normalize(quat::mul(r20, wr[l.hip]));
-  const glm::quat knee_world = quat::normalize(quat::mul(quat::mul(r20, l.r1), wr[l.knee]));
-  pose.rotations[l.hip] = quat::normalize(quat::mul(glm::conjugate(parent_world), hip_world));
-  pose.rotations[l.knee] = quat::normalize(quat::mul(glm::conjugate(hip_world), knee_world));
+  pose.rotations[l.hip] = quat::normalize(quat::mul(glm::conjugate(parent_world), l.hip_world));
+  pose.rotations[l.knee] = quat::normalize(quat::mul(glm::conjugate(l.hip_world), l.knee_world));
   // The shin may not be the ankle's direct parent in every skeleton: compose the joints between them.
   glm::quat between(1, 0, 0, 0);
   for (int j = skeleton.joints[l.ankle].parent; j != static_cast<int>(l.knee); j = skeleton.joints[static_cast<size_t>(j)].parent) {
     between = quat::mul(pose.rotations[static_cast<size_t>(j)], between);
   }
-  const glm::quat above_ankle = quat::mul(knee_world, between);
+  const glm::quat above_ankle = quat::mul(l.knee_world, between);
   pose.rotations[l.ankle] = quat::normalize(quat::mul(glm::inverse(above_ankle), foot_world));
   return (l.a + rotate(l.r2, l.bent)).vec();
 }
@@ -162,7 +166,8 @@ glm::vec3 solve_leg(const Skeleton& skeleton, const LegChain& leg, const IkParam
   leg_reach(leg, params, wp, target, body_shift, l);
   leg_bend(forward, l);
   leg_swing(l);
-  return leg_rotations(skeleton, pose, wr, foot_world, l);
+  leg_world_rotations(wr, l);
+  return leg_local_rotations(skeleton, pose, wr, foot_world, l);
 }
 
 FrameContacts select_pinned_points(const FrameContacts& contacts, const std::array<float, 2>& heel_speed,
@@ -246,7 +251,8 @@ void apply_foot_ik(const Skeleton& skeleton, const BodyMap& body, const IkParams
   for (size_t side = 0; side < 2; ++side) leg_bend(forward, legs[side]);
   for (size_t side = 0; side < 2; ++side) leg_swing(legs[side]);
   std::array<glm::vec3, 2> solved{};
-  for (size_t side = 0; side < 2; ++side) solved[side] = leg_rotations(skeleton, pose, wr, foot_world[side], legs[side]);
+  for (size_t side = 0; side < 2; ++side) leg_world_rotations(wr, legs[side]);
+  for (size_t side = 0; side < 2; ++side) solved[side] = leg_local_rotations(skeleton, pose, wr, foot_world[side], legs[side]);
 
   for (size_t side = 0; side < 2; ++side) {
     const LegChain& leg = body.legs[side];
