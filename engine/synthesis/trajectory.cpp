@@ -45,36 +45,46 @@ float height_relative_to_root(const Skeleton& skeleton, const Pose& pose, int jo
 #endif
 }
 
-namespace {
-
-// blended's height of `joint` relative to the root minus locomotion's: height_relative_to_root of both,
-// walked up the chain together (two independent chains of rotations in flight instead of one).
-float height_change(const Skeleton& skeleton, const Pose& locomotion, const Pose& blended, int joint) {
-#if defined(__SSE2__)
-  using namespace kinematics_detail;
-  __m128 p_blended = _mm_setzero_ps(), p_locomotion = _mm_setzero_ps();
-  for (int j = joint; j > 0;) {
-    const Joint& J = skeleton.joints[static_cast<size_t>(j)];
-    const __m128 offset = load_vec3(J.offset);
-    p_blended = _mm_add_ps(offset, rotate(load_quat(blended.rotations[static_cast<size_t>(j)]), p_blended));
-    p_locomotion = _mm_add_ps(offset, rotate(load_quat(locomotion.rotations[static_cast<size_t>(j)]), p_locomotion));
-    j = J.parent;
-  }
-  glm::vec3 b, l;
-  store_vec3(b, rotate(load_quat(blended.rotations[0]), p_blended));
-  store_vec3(l, rotate(load_quat(locomotion.rotations[0]), p_locomotion));
-  return b.y - l.y;
-#else
-  return height_relative_to_root(skeleton, blended, joint) - height_relative_to_root(skeleton, locomotion, joint);
-#endif
-}
-
-}  // namespace
-
 void foot_height_changes(const Skeleton& skeleton, const BodyMap& body, const Pose& locomotion, const Pose& blended,
                          float& dy_left, float& dy_right) {
-  dy_left = height_change(skeleton, locomotion, blended, body.legs[kLeft].ankle);
-  dy_right = height_change(skeleton, locomotion, blended, body.legs[kRight].ankle);
+#if defined(__SSE2__)
+  // Each ankle's height relative to the root in the blended pose minus the locomotion's
+  // (height_relative_to_root of each, the same arithmetic), the two legs' chains walked up side by side
+  // while both have joints left: four independent chains of rotations in flight.
+  using namespace kinematics_detail;
+  const Joint* const joints = skeleton.joints.data();
+  const glm::quat* const b_rot = blended.rotations.data();
+  const glm::quat* const l_rot = locomotion.rotations.data();
+  __m128 b[2] = {_mm_setzero_ps(), _mm_setzero_ps()}, l[2] = {_mm_setzero_ps(), _mm_setzero_ps()};
+  int j[2] = {body.legs[kLeft].ankle, body.legs[kRight].ankle};
+  const auto up_one = [&](int side) {
+    const Joint& J = joints[static_cast<size_t>(j[side])];
+    const __m128 offset = load_vec3(J.offset);
+    b[side] = _mm_add_ps(offset, rotate(load_quat(b_rot[static_cast<size_t>(j[side])]), b[side]));
+    l[side] = _mm_add_ps(offset, rotate(load_quat(l_rot[static_cast<size_t>(j[side])]), l[side]));
+    j[side] = J.parent;
+  };
+  while (j[0] > 0 && j[1] > 0) {
+    up_one(0);
+    up_one(1);
+  }
+  for (int side : {0, 1})
+    while (j[side] > 0) up_one(side);
+  float dy[2];
+  for (int side : {0, 1}) {
+    glm::vec3 bv, lv;
+    store_vec3(bv, rotate(load_quat(b_rot[0]), b[side]));
+    store_vec3(lv, rotate(load_quat(l_rot[0]), l[side]));
+    dy[side] = bv.y - lv.y;
+  }
+  dy_left = dy[0];
+  dy_right = dy[1];
+#else
+  dy_left = height_relative_to_root(skeleton, blended, body.legs[kLeft].ankle) -
+            height_relative_to_root(skeleton, locomotion, body.legs[kLeft].ankle);
+  dy_right = height_relative_to_root(skeleton, blended, body.legs[kRight].ankle) -
+             height_relative_to_root(skeleton, locomotion, body.legs[kRight].ankle);
+#endif
 }
 
 glm::quat heading_rotation(float heading) { return glm::angleAxis(heading, glm::vec3(0.0f, 1.0f, 0.0f)); }

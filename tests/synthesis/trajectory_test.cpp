@@ -2,10 +2,10 @@
 
 #include <doctest/doctest.h>
 
-#include <random>
-
+#include <array>
 #include <cmath>
 #include <cstring>
+#include <random>
 
 #include "engine/synthesis/synthesizer.h"
 #include "test_rig.h"
@@ -105,15 +105,22 @@ TEST_CASE("the feet's height changes are the differences of their heights relati
     for (glm::quat& q : pose.rotations) q = glm::normalize(glm::quat(u(rng), u(rng), u(rng), u(rng)));
     return pose;
   };
+  // The two legs' chains are walked side by side: also with chains of different lengths (the right one
+  // ending at its knee), either way round.
+  BodyMap right_shorter = body, left_shorter = body;
+  right_shorter.legs[kRight].ankle = body.legs[kRight].knee;
+  left_shorter.legs[kLeft].ankle = body.legs[kLeft].knee;
   for (int k = 0; k < 1000; ++k) {
     const Pose locomotion = random_pose(), blended = random_pose();
-    float dy_left = 0.0f, dy_right = 0.0f;
-    foot_height_changes(*skeleton, body, locomotion, blended, dy_left, dy_right);
-    const int left = body.legs[kLeft].ankle, right = body.legs[kRight].ankle;
-    const float left_expected = height_relative_to_root(*skeleton, blended, left) - height_relative_to_root(*skeleton, locomotion, left);
-    const float right_expected = height_relative_to_root(*skeleton, blended, right) - height_relative_to_root(*skeleton, locomotion, right);
-    REQUIRE(std::memcmp(&dy_left, &left_expected, sizeof(float)) == 0);
-    REQUIRE(std::memcmp(&dy_right, &right_expected, sizeof(float)) == 0);
+    for (const BodyMap* b : std::array<const BodyMap*, 3>{&body, &right_shorter, &left_shorter}) {
+      float dy_left = 0.0f, dy_right = 0.0f;
+      foot_height_changes(*skeleton, *b, locomotion, blended, dy_left, dy_right);
+      const int left = b->legs[kLeft].ankle, right = b->legs[kRight].ankle;
+      const float left_expected = height_relative_to_root(*skeleton, blended, left) - height_relative_to_root(*skeleton, locomotion, left);
+      const float right_expected = height_relative_to_root(*skeleton, blended, right) - height_relative_to_root(*skeleton, locomotion, right);
+      REQUIRE(std::memcmp(&dy_left, &left_expected, sizeof(float)) == 0);
+      REQUIRE(std::memcmp(&dy_right, &right_expected, sizeof(float)) == 0);
+    }
   }
 }
 
