@@ -17,6 +17,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "engine/motion/pose.h"
 #include "engine/util/error.h"
 #include "engine/util/files.h"
 
@@ -665,7 +666,8 @@ std::vector<Channel> read_channels(const tinygltf::Model& model, size_t anim_ind
 
 glm::vec3 to_vec3(const glm::dvec3& v) { return glm::vec3(static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)); }
 glm::quat to_quat(const glm::dquat& q) {
-  return glm::normalize(glm::quat(static_cast<float>(q.w), static_cast<float>(q.x), static_cast<float>(q.y), static_cast<float>(q.z)));
+  const glm::quat f = glm::normalize(glm::quat(static_cast<float>(q.w), static_cast<float>(q.x), static_cast<float>(q.y), static_cast<float>(q.z)));
+  return without_negligible_components(glm::dquat(f));
 }
 
 struct RigRest {

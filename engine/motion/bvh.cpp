@@ -25,6 +25,7 @@
 #include <system_error>
 #include <unordered_set>
 
+#include "engine/motion/pose.h"
 #include "engine/util/error.h"
 #include "engine/util/files.h"
 
@@ -406,7 +407,7 @@ class Parser {
             q = q * glm::angleAxis(glm::radians(v), axis);  // channels compose in the order listed
           }
         }
-        pose.rotations[static_cast<size_t>(j)] = glm::quat(glm::normalize(q));
+        pose.rotations[static_cast<size_t>(j)] = without_negligible_components(glm::normalize(q));
         if (j == 0) {
           const glm::dvec3 root = root_offset_ + translation * scale;
           check_length(root, line.number, "the root position of frame " + std::to_string(clip.frames.size()));

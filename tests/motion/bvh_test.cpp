@@ -192,6 +192,57 @@ TEST_CASE("BVH text with CRLF, tabs, no indentation, exponents and '{' on the ke
   CHECK(w.positions[1].y == doctest::Approx(0.9));
 }
 
+namespace {
+bool has_subnormal_component(const glm::quat& q) {
+  for (int c = 0; c < 4; ++c)
+    if (std::fpclassify(q[c]) == FP_SUBNORMAL) return true;
+  return false;
+}
+}  // namespace
+
+TEST_CASE("channels a converter left at 1e-16 degrees load as exact zeros, not subnormal floats") {
+  // A 1e-16 degree turn about X then 2e-18 about Y gives quaternion components near 1e-39 as floats:
+  // subnormal numbers, each product with which costs a microcode assist on x86.
+  const std::string text =
+      "HIERARCHY\nROOT hips\n{\nOFFSET 0 0 0\nCHANNELS 6 Xposition Yposition Zposition Zrotation Yrotation Xrotation\n"
+      "JOINT leg\n{\nOFFSET 0 -10 0\nCHANNELS 3 Zrotation Xrotation Yrotation\nEnd Site\n{\nOFFSET 0 -10 0\n}\n}\n}\n"
+      "MOTION\nFrames: 2\nFrame Time: 0.0333333\n"
+      "0 100 0 0 -3.4e-21 -7e-37 1e-16 2e-18 0\n"
+      "0 100 0 30 -3.4e-21 -7e-37 40 2e-18 25\n";
+  BvhReadOptions options;
+  options.unit_scale = 0.01f;
+  const Clip clip = parse_bvh(text, "noise.bvh", options);
+  REQUIRE(clip.frame_count() == 2);
+  for (const Pose& pose : clip.frames)
+    for (const glm::quat& q : pose.rotations) CHECK_FALSE(has_subnormal_component(q));
+  CHECK(clip.frames[0].rotations[0] == glm::quat(1, 0, 0, 0));
+  CHECK(clip.frames[0].rotations[1] == glm::quat(1, 0, 0, 0));
+  // A real rotation keeps every bit: the leg's Z 1e-16 X 2e-18 Y 0 becomes the identity, but Z 40 X 2e-18
+  // Y 25 is the product of two real turns, its tiny X component (about 1e-20) dropped.
+  const glm::dquat z(glm::angleAxis(glm::radians(40.0), glm::dvec3(0, 0, 1)));
+  const glm::dquat y(glm::angleAxis(glm::radians(25.0), glm::dvec3(0, 1, 0)));
+  const glm::dquat expected = glm::normalize(z * y);
+  const glm::quat leg = clip.frames[1].rotations[1];
+  CHECK(leg.w == static_cast<float>(expected.w));
+  CHECK(leg.y == static_cast<float>(expected.y));
+  CHECK(leg.z == static_cast<float>(expected.z));
+  CHECK(std::abs(leg.x - static_cast<float>(expected.x)) < 1e-9f);
+  CHECK(clip.frames[1].rotations[0] == glm::quat(glm::angleAxis(glm::radians(30.0), glm::dvec3(0, 0, 1))));
+}
+
+TEST_CASE("no clip in ../shared/mocap loads with a subnormal rotation component") {
+  const auto files = mocap_files();
+  REQUIRE(files.size() >= 24);
+  for (const auto& path : files) {
+    CAPTURE(path.string());
+    const Clip clip = read_bvh(path.string());
+    int subnormal = 0;
+    for (const Pose& pose : clip.frames)
+      for (const glm::quat& q : pose.rotations) subnormal += has_subnormal_component(q) ? 1 : 0;
+    CHECK(subnormal == 0);
+  }
+}
+
 TEST_CASE("a CMU clip with mixed rotation orders loads with the pose derived by hand from the file") {
   // punch_right_14_01.bvh, frame 0 (line 188). The chain from the root to LeftElbow, with the OFFSETs of
   // lines 4-105 and the channel values of frame 0 (columns 0-5, 36-44, 54-59), in CMU units:
