@@ -16,6 +16,10 @@ namespace prep::quat {
 
 // p * q (glm's operator*).
 inline glm::quat mul(const glm::quat& p, const glm::quat& q);
+// glm::conjugate(p) * q and p * glm::conjugate(q): the conjugate's signs are flipped in the register
+// instead of a glm::quat being built in memory and read back (a stall, see normalize below).
+inline glm::quat conjugate_mul(const glm::quat& p, const glm::quat& q);
+inline glm::quat mul_conjugate(const glm::quat& p, const glm::quat& q);
 // q * v: v turned by the unit quaternion q (glm's operator*).
 inline glm::vec3 rotate(const glm::quat& q, const glm::vec3& v);
 // glm::normalize(q): the identity for a zero quaternion.
@@ -33,23 +37,40 @@ inline glm::quat with_positive_w(const glm::quat& q);
 inline void normalize_each(glm::quat* q, size_t n);
 
 #if defined(__SSE2__)
-inline glm::quat mul(const glm::quat& p, const glm::quat& q) {
-  using namespace kinematics_detail;
-  // glm, lanes (x, y, z, w):
-  //   x = pw qx + px qw + py qz - pz qy      y = pw qy + py qw + pz qx - px qz
-  //   z = pw qz + pz qw + px qy - py qx      w = pw qw - px qx - py qy - pz qz
-  // added left to right; a - b is a + (-b) exactly, so the signs ride on the products.
-  const __m128 a = load_quat(p), b = load_quat(q);
+namespace detail {
+// glm's product of the quaternions in a and b, lanes (x, y, z, w):
+//   x = pw qx + px qw + py qz - pz qy      y = pw qy + py qw + pz qx - px qz
+//   z = pw qz + pz qw + px qy - py qx      w = pw qw - px qx - py qy - pz qz
+// added left to right; a - b is a + (-b) exactly, so the signs ride on the products.
+inline __m128 glm_product(__m128 a, __m128 b) {
   const __m128 last_negative = _mm_set_ps(-0.0f, 0.0f, 0.0f, 0.0f);
   __m128 r = _mm_mul_ps(_mm_shuffle_ps(a, a, _MM_SHUFFLE(3, 3, 3, 3)), b);
   r = _mm_add_ps(r, _mm_xor_ps(_mm_mul_ps(_mm_shuffle_ps(a, a, _MM_SHUFFLE(0, 2, 1, 0)), _mm_shuffle_ps(b, b, _MM_SHUFFLE(0, 3, 3, 3))),
                                last_negative));
   r = _mm_add_ps(r, _mm_xor_ps(_mm_mul_ps(_mm_shuffle_ps(a, a, _MM_SHUFFLE(1, 0, 2, 1)), _mm_shuffle_ps(b, b, _MM_SHUFFLE(1, 1, 0, 2))),
                                last_negative));
-  r = _mm_sub_ps(r, _mm_mul_ps(_mm_shuffle_ps(a, a, _MM_SHUFFLE(2, 1, 0, 2)), _mm_shuffle_ps(b, b, _MM_SHUFFLE(2, 0, 2, 1))));
+  return _mm_sub_ps(r, _mm_mul_ps(_mm_shuffle_ps(a, a, _MM_SHUFFLE(2, 1, 0, 2)), _mm_shuffle_ps(b, b, _MM_SHUFFLE(2, 0, 2, 1))));
+}
+// The conjugate: x, y and z negated, exactly (a sign flip).
+inline __m128 conjugate(__m128 q) { return _mm_xor_ps(q, _mm_set_ps(0.0f, -0.0f, -0.0f, -0.0f)); }
+inline glm::quat stored(__m128 r) {
   glm::quat out;
-  store_quat(out, r);
+  kinematics_detail::store_quat(out, r);
   return out;
+}
+}  // namespace detail
+
+inline glm::quat mul(const glm::quat& p, const glm::quat& q) {
+  using kinematics_detail::load_quat;
+  return detail::stored(detail::glm_product(load_quat(p), load_quat(q)));
+}
+inline glm::quat conjugate_mul(const glm::quat& p, const glm::quat& q) {
+  using kinematics_detail::load_quat;
+  return detail::stored(detail::glm_product(detail::conjugate(load_quat(p)), load_quat(q)));
+}
+inline glm::quat mul_conjugate(const glm::quat& p, const glm::quat& q) {
+  using kinematics_detail::load_quat;
+  return detail::stored(detail::glm_product(load_quat(p), detail::conjugate(load_quat(q))));
 }
 
 inline glm::vec3 rotate(const glm::quat& q, const glm::vec3& v) {
@@ -111,6 +132,8 @@ inline glm::quat with_positive_w(const glm::quat& q) {
 }
 #else
 inline glm::quat mul(const glm::quat& p, const glm::quat& q) { return p * q; }
+inline glm::quat conjugate_mul(const glm::quat& p, const glm::quat& q) { return glm::conjugate(p) * q; }
+inline glm::quat mul_conjugate(const glm::quat& p, const glm::quat& q) { return p * glm::conjugate(q); }
 inline glm::vec3 rotate(const glm::quat& q, const glm::vec3& v) { return q * v; }
 inline glm::quat normalize(const glm::quat& q) { return glm::normalize(q); }
 inline glm::quat normalize(float w, float x, float y, float z) { return glm::normalize(glm::quat(w, x, y, z)); }

@@ -45,6 +45,11 @@ struct V3 {
   }
   // q * v for a unit quaternion q (glm's operator*, as quat::rotate).
   friend V3 rotate(const glm::quat& q, V3 v) { return {kinematics_detail::rotate(kinematics_detail::load_quat(q), v.r)}; }
+  // glm::conjugate(q) * v: v turned back by q, the conjugate's signs flipped in the register.
+  friend V3 rotate_back(const glm::quat& q, V3 v) {
+    const __m128 conjugate = _mm_xor_ps(kinematics_detail::load_quat(q), _mm_set_ps(0.0f, -0.0f, -0.0f, -0.0f));
+    return {kinematics_detail::rotate(conjugate, v.r)};
+  }
   // glm::min and glm::max lane by lane: y < x ? y : x and x < y ? y : x, which of two equal numbers (+0
   // and -0) they return included (minps and maxps return their second operand then).
   friend V3 min(V3 x, V3 y) { return {_mm_min_ps(y.r, x.r)}; }
@@ -73,6 +78,7 @@ struct V3 {
   friend V3 cross(V3 a, V3 b) { return {glm::cross(a.r, b.r)}; }
   friend float dot(V3 a, V3 b) { return glm::dot(a.r, b.r); }
   friend V3 rotate(const glm::quat& q, V3 v) { return {q * v.r}; }
+  friend V3 rotate_back(const glm::quat& q, V3 v) { return {glm::conjugate(q) * v.r}; }
   friend V3 min(V3 x, V3 y) { return {glm::min(x.r, y.r)}; }
   friend V3 max(V3 x, V3 y) { return {glm::max(x.r, y.r)}; }
   static V3 splat(float s) { return {glm::vec3(s)}; }

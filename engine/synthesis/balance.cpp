@@ -418,11 +418,14 @@ void moved_gradient(const Skeleton& skeleton, const BalanceModel& model, const B
 // order in |v|; the line search judges the step by the true cost, so any such retraction serves, and this
 // one needs no trigonometry). Written unnormalized, as one 16-byte store (a normalize reads it whole), for
 // quat::normalize_each to finish.
-inline void small_rotation_unnormalized(glm::vec3 v, glm::quat& out) {
+inline void small_rotation_unnormalized(V3 v, glm::quat& out) {
 #if defined(__SSE2__)
-  kinematics_detail::store_quat(out, _mm_set_ps(1.0f, 0.5f * v.z, 0.5f * v.y, 0.5f * v.x));
+  // (0.5 v, 1) without leaving the register: halved lane by lane, w set to 1.
+  const __m128 half = _mm_mul_ps(v.r, _mm_set1_ps(0.5f));
+  const __m128 xyz = _mm_castsi128_ps(_mm_set_epi32(0, -1, -1, -1));
+  kinematics_detail::store_quat(out, _mm_or_ps(_mm_and_ps(half, xyz), _mm_set_ps(1.0f, 0.0f, 0.0f, 0.0f)));
 #else
-  out = glm::quat(1.0f, 0.5f * v.x, 0.5f * v.y, 0.5f * v.z);
+  out = glm::quat(1.0f, 0.5f * v.x(), 0.5f * v.y(), 0.5f * v.z());
 #endif
 }
 
@@ -592,7 +595,7 @@ BalanceResult optimize_balance(const Skeleton& skeleton, const BalanceModel& mod
         const size_t j = static_cast<size_t>(model.optimized[k]);
         const glm::quat& parent_world = s.rotations[static_cast<size_t>(skeleton.joints[j].parent)];
         // A world-frame rotation vector at joint j, expressed in its parent's frame, premultiplies its local rotation.
-        small_rotation_unnormalized(quat::rotate(glm::conjugate(parent_world), -step * s.joint_gradient[j]), s.step_rotation[k]);
+        small_rotation_unnormalized(rotate_back(parent_world, -step * V3::load(s.joint_gradient[j])), s.step_rotation[k]);
       }
       quat::normalize_each(s.step_rotation.data(), k_count);
       for (size_t k = 0; k < k_count; ++k) s.trial_local[k] = quat::mul(s.step_rotation[k], s.local[k]);
@@ -625,7 +628,7 @@ BalanceResult optimize_balance(const Skeleton& skeleton, const BalanceModel& mod
   }
   for (size_t k = 0; k < k_count; ++k) pose.rotations[static_cast<size_t>(model.optimized[k])] = s.local[k];
   if (memory) {
-    for (size_t k = 0; k < k_count; ++k) memory->offset[k] = quat::mul(s.local[k], glm::conjugate(s.base[k]));
+    for (size_t k = 0; k < k_count; ++k) memory->offset[k] = quat::mul_conjugate(s.local[k], s.base[k]);
     quat::normalize_each(memory->offset.data(), k_count);
     for (size_t k = 0; k < k_count; ++k) memory->offset[k] = quat::with_positive_w(memory->offset[k]);
     memory->valid = true;

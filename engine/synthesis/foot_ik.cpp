@@ -145,8 +145,8 @@ glm::vec3 leg_local_rotations(const Skeleton& skeleton, Pose& pose, const std::v
                               const glm::quat& foot_world, const LegSolve& l) {
   const int hip_parent = skeleton.joints[l.hip].parent;
   const glm::quat parent_world = hip_parent >= 0 ? wr[static_cast<size_t>(hip_parent)] : glm::quat(1, 0, 0, 0);
-  pose.rotations[l.hip] = quat::normalize(quat::mul(glm::conjugate(parent_world), l.hip_world));
-  pose.rotations[l.knee] = quat::normalize(quat::mul(glm::conjugate(l.hip_world), l.knee_world));
+  pose.rotations[l.hip] = quat::normalize(quat::conjugate_mul(parent_world, l.hip_world));
+  pose.rotations[l.knee] = quat::normalize(quat::conjugate_mul(l.hip_world, l.knee_world));
   // The shin may not be the ankle's direct parent in every skeleton: compose the joints between them.
   glm::quat between(1, 0, 0, 0);
   for (int j = skeleton.joints[l.ankle].parent; j != static_cast<int>(l.knee); j = skeleton.joints[static_cast<size_t>(j)].parent) {

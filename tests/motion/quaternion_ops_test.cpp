@@ -27,6 +27,8 @@ TEST_CASE("quaternion ops: product, rotation and normalization are glm's to the 
     }
     const glm::vec3 v(u(rng) * sb, u(rng), u(rng) * sa);
     REQUIRE(same_bits(quat::mul(p, q), p * q));
+    REQUIRE(same_bits(quat::conjugate_mul(p, q), glm::conjugate(p) * q));
+    REQUIRE(same_bits(quat::mul_conjugate(p, q), p * glm::conjugate(q)));
     REQUIRE(same_bits(quat::rotate(p, v), p * v));
     REQUIRE(same_bits(quat::normalize(p), glm::normalize(p)));
 #if defined(__SSE2__)

@@ -30,6 +30,7 @@ TEST_CASE("vector ops: sums, products, crosses, dots, lengths, normalization and
     REQUIRE(same_bits(cross(va, vb).vec(), glm::cross(a, b)));
     REQUIRE(same_bits(dot(va, vb), glm::dot(a, b)));
     REQUIRE(same_bits(rotate(q, va).vec(), q * a));
+    REQUIRE(same_bits(rotate_back(q, va).vec(), glm::conjugate(q) * a));
     REQUIRE(same_bits(length(va), glm::length(a)));
     REQUIRE(same_bits(normalize(va).vec(), glm::normalize(a)));
     V3 sum = va;
