@@ -20,6 +20,9 @@ inline glm::quat mul(const glm::quat& p, const glm::quat& q);
 // instead of a glm::quat being built in memory and read back (a stall, see normalize below).
 inline glm::quat conjugate_mul(const glm::quat& p, const glm::quat& q);
 inline glm::quat mul_conjugate(const glm::quat& p, const glm::quat& q);
+// glm::inverse(p) * q, for any non-zero p: glm's conjugate(p) / dot(p, p), its four divisions one
+// division of the register.
+inline glm::quat inverse_mul(const glm::quat& p, const glm::quat& q);
 // q * v: v turned by the unit quaternion q (glm's operator*).
 inline glm::vec3 rotate(const glm::quat& q, const glm::vec3& v);
 // glm::normalize(q): the identity for a zero quaternion.
@@ -71,6 +74,12 @@ inline glm::quat conjugate_mul(const glm::quat& p, const glm::quat& q) {
 inline glm::quat mul_conjugate(const glm::quat& p, const glm::quat& q) {
   using kinematics_detail::load_quat;
   return detail::stored(detail::glm_product(load_quat(p), detail::conjugate(load_quat(q))));
+}
+inline glm::quat inverse_mul(const glm::quat& p, const glm::quat& q) {
+  using kinematics_detail::load_quat;
+  const float norm2 = (p.w * p.w + p.x * p.x) + (p.y * p.y + p.z * p.z);  // glm's dot(p, p)
+  const __m128 inverse = _mm_div_ps(detail::conjugate(load_quat(p)), _mm_set1_ps(norm2));
+  return detail::stored(detail::glm_product(inverse, load_quat(q)));
 }
 
 inline glm::vec3 rotate(const glm::quat& q, const glm::vec3& v) {
@@ -134,6 +143,7 @@ inline glm::quat with_positive_w(const glm::quat& q) {
 inline glm::quat mul(const glm::quat& p, const glm::quat& q) { return p * q; }
 inline glm::quat conjugate_mul(const glm::quat& p, const glm::quat& q) { return glm::conjugate(p) * q; }
 inline glm::quat mul_conjugate(const glm::quat& p, const glm::quat& q) { return p * glm::conjugate(q); }
+inline glm::quat inverse_mul(const glm::quat& p, const glm::quat& q) { return glm::inverse(p) * q; }
 inline glm::vec3 rotate(const glm::quat& q, const glm::vec3& v) { return q * v; }
 inline glm::quat normalize(const glm::quat& q) { return glm::normalize(q); }
 inline glm::quat normalize(float w, float x, float y, float z) { return glm::normalize(glm::quat(w, x, y, z)); }

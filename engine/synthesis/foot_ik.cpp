@@ -23,7 +23,7 @@ glm::quat rotation_between(V3 from, V3 to) {
         normalize(cross(f, V3::load(std::abs(f.x()) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0)))).vec();
     return glm::quat(0.0f, half_turn.x, half_turn.y, half_turn.z);
   }
-  return quat::normalize(glm::quat(1.0f + d, axis.x(), axis.y(), axis.z()));
+  return quat::normalize(1.0f + d, axis.x(), axis.y(), axis.z());
 }
 glm::quat rotation_between(glm::vec3 from, glm::vec3 to) { return rotation_between(V3::load(from), V3::load(to)); }
 
@@ -44,7 +44,7 @@ glm::quat turn_between(Angle from, Angle to, glm::vec3 axis) {
   const float c = to.cos * from.cos + to.sin * from.sin;
   const float s = to.sin * from.cos - to.cos * from.sin;
   if (1.0f + c < 1e-7f) return glm::quat(0.0f, axis.x, axis.y, axis.z);  // a half turn
-  return quat::normalize(glm::quat(1.0f + c, s * axis.x, s * axis.y, s * axis.z));
+  return quat::normalize(1.0f + c, s * axis.x, s * axis.y, s * axis.z);
 }
 
 // m: how far above the floor an ankle joint is kept, so that its toe can be pitched up to the floor.
@@ -153,7 +153,7 @@ glm::vec3 leg_local_rotations(const Skeleton& skeleton, Pose& pose, const std::v
     between = quat::mul(pose.rotations[static_cast<size_t>(j)], between);
   }
   const glm::quat above_ankle = quat::mul(l.knee_world, between);
-  pose.rotations[l.ankle] = quat::normalize(quat::mul(glm::inverse(above_ankle), foot_world));
+  pose.rotations[l.ankle] = quat::normalize(quat::inverse_mul(above_ankle, foot_world));
   return (l.a + rotate(l.r2, l.bent)).vec();
 }
 

@@ -29,6 +29,7 @@ TEST_CASE("quaternion ops: product, rotation and normalization are glm's to the 
     REQUIRE(same_bits(quat::mul(p, q), p * q));
     REQUIRE(same_bits(quat::conjugate_mul(p, q), glm::conjugate(p) * q));
     REQUIRE(same_bits(quat::mul_conjugate(p, q), p * glm::conjugate(q)));
+    REQUIRE(same_bits(quat::inverse_mul(p, q), glm::inverse(p) * q));
     REQUIRE(same_bits(quat::rotate(p, v), p * v));
     REQUIRE(same_bits(quat::normalize(p), glm::normalize(p)));
 #if defined(__SSE2__)
