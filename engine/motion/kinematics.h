@@ -73,6 +73,9 @@ inline void store_vec3(glm::vec3& v, __m128 r) {
 inline __m128 load_quat(const glm::quat& q) { return _mm_loadu_ps(&q.x); }
 inline void store_quat(glm::quat& q, __m128 r) { _mm_storeu_ps(&q.x, r); }
 
+// The conjugate of the quaternion in q: x, y and z negated exactly (a sign flip), w as it is.
+inline __m128 quat_conjugate(__m128 q) { return _mm_xor_ps(q, _mm_set_ps(0.0f, -0.0f, -0.0f, -0.0f)); }
+
 // a * b, lanes (x, y, z, w): a.w b + a.x (b.w, -b.z, b.y, -b.x) + a.y (b.z, b.w, -b.x, -b.y)
 // + a.z (-b.y, b.x, b.w, -b.z).
 inline __m128 quat_multiply(__m128 a, __m128 b) {

@@ -54,8 +54,6 @@ inline __m128 glm_product(__m128 a, __m128 b) {
                                last_negative));
   return _mm_sub_ps(r, _mm_mul_ps(_mm_shuffle_ps(a, a, _MM_SHUFFLE(2, 1, 0, 2)), _mm_shuffle_ps(b, b, _MM_SHUFFLE(2, 0, 2, 1))));
 }
-// The conjugate: x, y and z negated, exactly (a sign flip).
-inline __m128 conjugate(__m128 q) { return _mm_xor_ps(q, _mm_set_ps(0.0f, -0.0f, -0.0f, -0.0f)); }
 inline glm::quat stored(__m128 r) {
   glm::quat out;
   kinematics_detail::store_quat(out, r);
@@ -69,16 +67,16 @@ inline glm::quat mul(const glm::quat& p, const glm::quat& q) {
 }
 inline glm::quat conjugate_mul(const glm::quat& p, const glm::quat& q) {
   using kinematics_detail::load_quat;
-  return detail::stored(detail::glm_product(detail::conjugate(load_quat(p)), load_quat(q)));
+  return detail::stored(detail::glm_product(kinematics_detail::quat_conjugate(load_quat(p)), load_quat(q)));
 }
 inline glm::quat mul_conjugate(const glm::quat& p, const glm::quat& q) {
   using kinematics_detail::load_quat;
-  return detail::stored(detail::glm_product(load_quat(p), detail::conjugate(load_quat(q))));
+  return detail::stored(detail::glm_product(load_quat(p), kinematics_detail::quat_conjugate(load_quat(q))));
 }
 inline glm::quat inverse_mul(const glm::quat& p, const glm::quat& q) {
   using kinematics_detail::load_quat;
   const float norm2 = (p.w * p.w + p.x * p.x) + (p.y * p.y + p.z * p.z);  // glm's dot(p, p)
-  const __m128 inverse = _mm_div_ps(detail::conjugate(load_quat(p)), _mm_set1_ps(norm2));
+  const __m128 inverse = _mm_div_ps(kinematics_detail::quat_conjugate(load_quat(p)), _mm_set1_ps(norm2));
   return detail::stored(detail::glm_product(inverse, load_quat(q)));
 }
 

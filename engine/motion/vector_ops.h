@@ -47,8 +47,8 @@ struct V3 {
   friend V3 rotate(const glm::quat& q, V3 v) { return {kinematics_detail::rotate(kinematics_detail::load_quat(q), v.r)}; }
   // glm::conjugate(q) * v: v turned back by q, the conjugate's signs flipped in the register.
   friend V3 rotate_back(const glm::quat& q, V3 v) {
-    const __m128 conjugate = _mm_xor_ps(kinematics_detail::load_quat(q), _mm_set_ps(0.0f, -0.0f, -0.0f, -0.0f));
-    return {kinematics_detail::rotate(conjugate, v.r)};
+    using namespace kinematics_detail;
+    return {kinematics_detail::rotate(quat_conjugate(load_quat(q)), v.r)};
   }
   // glm::min and glm::max lane by lane: y < x ? y : x and x < y ? y : x, which of two equal numbers (+0
   // and -0) they return included (minps and maxps return their second operand then).
