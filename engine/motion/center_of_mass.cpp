@@ -169,13 +169,16 @@ void segment_centroids(const Skeleton& skeleton, const MassModel& model, const s
 }
 
 glm::vec3 center_of_mass(const MassModel& model, const std::vector<glm::vec3>& centroids) {
+  const BodySegment* const segments = model.segments.data();
+  const glm::vec3* const points = centroids.data();
   V3 sum = V3::zero();
   float mass = 0.0f;
-  for (size_t i = 0; i < model.segments.size() && i < centroids.size(); ++i) {
-    sum += model.segments[i].mass_fraction * V3::load(centroids[i]);
-    mass += model.segments[i].mass_fraction;
+  for (size_t i = 0, n = std::min(model.segments.size(), centroids.size()); i < n; ++i) {
+    const float m = segments[i].mass_fraction;
+    sum += m * V3::load(points[i]);
+    mass += m;
   }
-  return mass > 0.0f ? sum.vec() / mass : sum.vec();
+  return (mass > 0.0f ? sum / mass : sum).vec();
 }
 
 }  // namespace prep

@@ -35,6 +35,7 @@ struct V3 {
   friend V3 operator+(V3 a, V3 b) { return {_mm_add_ps(a.r, b.r)}; }
   friend V3 operator-(V3 a, V3 b) { return {_mm_sub_ps(a.r, b.r)}; }
   friend V3 operator*(float s, V3 a) { return {_mm_mul_ps(_mm_set1_ps(s), a.r)}; }
+  friend V3 operator/(V3 a, float s) { return {_mm_div_ps(a.r, _mm_set1_ps(s))}; }
   friend V3 operator-(V3 a) { return {_mm_xor_ps(a.r, _mm_set1_ps(-0.0f))}; }
   V3& operator+=(V3 b) { return *this = *this + b; }
   V3& operator-=(V3 b) { return *this = *this - b; }
@@ -72,6 +73,7 @@ struct V3 {
   friend V3 operator+(V3 a, V3 b) { return {a.r + b.r}; }
   friend V3 operator-(V3 a, V3 b) { return {a.r - b.r}; }
   friend V3 operator*(float s, V3 a) { return {s * a.r}; }
+  friend V3 operator/(V3 a, float s) { return {a.r / s}; }
   friend V3 operator-(V3 a) { return {-a.r}; }
   V3& operator+=(V3 b) { return *this = *this + b; }
   V3& operator-=(V3 b) { return *this = *this - b; }

@@ -26,6 +26,7 @@ TEST_CASE("vector ops: sums, products, crosses, dots, lengths, normalization and
     REQUIRE(same_bits((va + vb).vec(), a + b));
     REQUIRE(same_bits((va - vb).vec(), a - b));
     REQUIRE(same_bits((s * va).vec(), s * a));
+    REQUIRE(same_bits((va / s).vec(), a / s));
     REQUIRE(same_bits((-va).vec(), -a));
     REQUIRE(same_bits(cross(va, vb).vec(), glm::cross(a, b)));
     REQUIRE(same_bits(dot(va, vb), glm::dot(a, b)));
