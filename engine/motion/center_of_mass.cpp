@@ -149,6 +149,20 @@ MassModel MassModel::build(const Skeleton& skeleton, const BodyMap& body) {
   return model;
 }
 
+namespace {
+
+// A segment's centroid: from its proximal joint toward its distal point (the joint, or its End Site).
+inline void segment_centroid(const BodySegment& s, const Joint* joints, const glm::vec3* positions, const glm::quat* rotations,
+                             glm::vec3& centroid) {
+  const size_t d = static_cast<size_t>(s.distal);
+  const V3 a = V3::load(positions[static_cast<size_t>(s.proximal)]);
+  const V3 b = s.distal_is_end_site ? V3::load(positions[d]) + rotate(rotations[d], V3::load(joints[d].end_site))
+                                    : V3::load(positions[d]);
+  (a + s.com_fraction * (b - a)).store(centroid);
+}
+
+}  // namespace
+
 void segment_centroids(const Skeleton& skeleton, const MassModel& model, const std::vector<glm::vec3>& world_positions,
                        const std::vector<glm::quat>& world_rotations, std::vector<glm::vec3>& out) {
   out.resize(model.segments.size());
@@ -158,14 +172,38 @@ void segment_centroids(const Skeleton& skeleton, const MassModel& model, const s
   const glm::vec3* const positions = world_positions.data();
   const glm::quat* const rotations = world_rotations.data();
   glm::vec3* const centroids = out.data();
-  for (size_t i = 0, n = model.segments.size(); i < n; ++i) {
-    const BodySegment& s = segments[i];
-    const size_t d = static_cast<size_t>(s.distal);
-    const V3 a = V3::load(positions[static_cast<size_t>(s.proximal)]);
-    const V3 b = s.distal_is_end_site ? V3::load(positions[d]) + rotate(rotations[d], V3::load(joints[d].end_site))
-                                      : V3::load(positions[d]);
-    (a + s.com_fraction * (b - a)).store(centroids[i]);  // the distal point: the joint, or its End Site
+  for (size_t i = 0, n = model.segments.size(); i < n; ++i) segment_centroid(segments[i], joints, positions, rotations, centroids[i]);
+}
+
+void segment_centroids(const Skeleton& skeleton, const MassModel& model, const std::vector<glm::vec3>& world_positions,
+                       const std::vector<glm::quat>& world_rotations, const std::vector<int>& which,
+                       std::vector<glm::vec3>& out) {
+  const BodySegment* const segments = model.segments.data();
+  const Joint* const joints = skeleton.joints.data();
+  const glm::vec3* const positions = world_positions.data();
+  const glm::quat* const rotations = world_rotations.data();
+  glm::vec3* const centroids = out.data();
+  for (int i : which) {
+    const size_t k = static_cast<size_t>(i);
+    segment_centroid(segments[k], joints, positions, rotations, centroids[k]);
   }
+}
+
+std::vector<int> segments_moved_by_turning(const Skeleton& skeleton, const MassModel& model, const std::vector<int>& joints) {
+  // below[j]: j is strictly below one of the joints (its position moves when they turn).
+  std::vector<char> turned(static_cast<size_t>(skeleton.size()), 0), below(static_cast<size_t>(skeleton.size()), 0);
+  for (int j : joints) turned[static_cast<size_t>(j)] = 1;
+  for (int j = 0; j < skeleton.size(); ++j) {
+    const int parent = skeleton.joints[static_cast<size_t>(j)].parent;
+    if (parent >= 0) below[static_cast<size_t>(j)] = turned[static_cast<size_t>(parent)] || below[static_cast<size_t>(parent)];
+  }
+  std::vector<int> moved;
+  for (size_t i = 0; i < model.segments.size(); ++i) {
+    const BodySegment& s = model.segments[i];
+    const size_t p = static_cast<size_t>(s.proximal), d = static_cast<size_t>(s.distal);
+    if (below[p] || below[d] || (s.distal_is_end_site && turned[d])) moved.push_back(static_cast<int>(i));
+  }
+  return moved;
 }
 
 glm::vec3 center_of_mass(const MassModel& model, const std::vector<glm::vec3>& centroids) {

@@ -33,6 +33,15 @@ struct MassModel {
 void segment_centroids(const Skeleton& skeleton, const MassModel& model, const std::vector<glm::vec3>& world_positions,
                        const std::vector<glm::quat>& world_rotations, std::vector<glm::vec3>& out);
 
+// The same for the listed segments only (indices into MassModel::segments), into `out`, which holds an entry
+// per segment; the others are left as they are.
+void segment_centroids(const Skeleton& skeleton, const MassModel& model, const std::vector<glm::vec3>& world_positions,
+                       const std::vector<glm::quat>& world_rotations, const std::vector<int>& segments,
+                       std::vector<glm::vec3>& out);
+// The segments whose centroid moves when the given joints turn and nothing above them moves: those with a
+// joint strictly below one of them at either end, or with one of them as the distal joint of an End Site.
+std::vector<int> segments_moved_by_turning(const Skeleton& skeleton, const MassModel& model, const std::vector<int>& joints);
+
 // Mass-weighted mean of the segment centroids.
 glm::vec3 center_of_mass(const MassModel& model, const std::vector<glm::vec3>& centroids);
 

@@ -178,6 +178,7 @@ void Synthesizer::stage_balance(const SynthesisInput& in, SynthesisState& state,
     state.correction.valid = false;
     if (!report) {
       s.support_of_output = false;
+      s.centroids_but_feet_of_output = false;
       return;
     }
   }
@@ -243,6 +244,7 @@ void Synthesizer::stage_balance(const SynthesisInput& in, SynthesisState& state,
   }
 
   s.support_of_output = true;  // and `state.previous` holds its centroids (the World reads them)
+  s.centroids_but_feet_of_output = false;
   std::copy(state.previous.begin(), state.previous.begin() + static_cast<long>(n_parts), state.before_previous.begin());
   std::copy(final_centroids, final_centroids + n_parts, state.previous.begin());
   state.history = bp.enabled ? std::min(state.history + 1, 2) : 0;
@@ -262,6 +264,7 @@ void Synthesizer::stage_floor(SynthesisScratch& s, Pose& out, bool kinematics_gi
   if (!kinematics_given) {
     forward_kinematics(*skeleton_, out, s.positions, &s.rotations);  // sizes the buffers of any scratch
     s.support_of_output = false;  // a pose the stages before did not make
+    s.centroids_but_feet_of_output = false;
   }
   const float root_height = out.root_position.y;
   // Usually nothing is below the floor and the kinematics stand. A body lifted is taken again whole; feet
@@ -270,8 +273,10 @@ void Synthesizer::stage_floor(SynthesisScratch& s, Pose& out, bool kinematics_gi
   if (out.root_position.y != root_height) {
     all_pass_.run(out, s.positions, s.rotations);
     s.support_of_output = false;
+    s.centroids_but_feet_of_output = false;
   } else if (turned > 0) {
     foot_pass_.run(out, s.positions, s.rotations);
+    s.centroids_but_feet_of_output = s.support_of_output || s.centroids_but_feet_of_output;
     s.support_of_output = false;
   }
 }

@@ -95,6 +95,10 @@ struct SynthesisScratch {
   // `support` is that of the pose the last step() or stage_floor() returned: its feet and contacts are
   // those the balance stage saw (the floor stage changed nothing).
   bool support_of_output = false;
+  // The pose the last step() or stage_floor() returned differs from the one the balance stage left only by
+  // feet pitched up about their ankles (stage_floor): the body-part centroids it kept (SynthesisState::
+  // previous) still stand for every part whose joints are above the ankles.
+  bool centroids_but_feet_of_output = false;
 };
 
 class Synthesizer {

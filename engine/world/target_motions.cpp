@@ -13,11 +13,11 @@
 #include "engine/library/builtin.h"
 #include "engine/library/generated.h"
 #include "engine/motion/body_volumes.h"
+#include "engine/motion/center_of_mass.h"
 #include "engine/motion/kinematics.h"
 #include "engine/synthesis/preparation_run.h"
 #include "engine/util/error.h"
 #include "engine/util/files.h"
-#include <nlohmann/json.hpp>
 
 #include "engine/world/clearance.h"
 #include "engine/world/floor.h"
@@ -284,6 +284,10 @@ WorldAssets make_world_assets(std::shared_ptr<const MotionSet> set, const Params
   a.sweeps.resize(kTargetActionCount);
   a.body_reaches.resize(kTargetActionCount);
   a.volumes = std::make_shared<const BodyVolumes>(*set->skeleton);
+  std::vector<int> ankles;
+  for (const LegChain& leg : set->body.legs)
+    if (leg.ankle >= 0) ankles.push_back(leg.ankle);
+  a.foot_segments = segments_moved_by_turning(*set->skeleton, set->mass, ankles);
   const BodyVolumes& volumes = *a.volumes;
   for (int k = 0; k < kTargetActionCount; ++k) {
     TargetMotion& t = a.targets[static_cast<size_t>(k)];

@@ -587,10 +587,13 @@ void World::update_balance(int index, bool kinematics_in_scratch) {
   const std::vector<glm::vec3>& positions = rt.scratch.positions;
   const std::vector<glm::quat>& rotations = rt.scratch.rotations;
   std::vector<glm::vec3>& centroids = call_scratch().centroids;
-  if (kinematics_in_scratch && rt.scratch.support_of_output) {
+  const bool feet_pitched = kinematics_in_scratch && rt.scratch.centroids_but_feet_of_output;
+  if ((kinematics_in_scratch && rt.scratch.support_of_output) || feet_pitched) {
     // The pose is the synthesizer's output as it left it: its body-part centroids (one per mass segment,
     // in the same order, by the same arithmetic) are those it keeps for the next frame's smoothness term.
+    // Feet the floor stage pitched up since move their own segments only.
     centroids.assign(rt.synthesis.previous.begin(), rt.synthesis.previous.begin() + static_cast<long>(set.mass.segments.size()));
+    if (feet_pitched) segment_centroids(*set.skeleton, set.mass, positions, rotations, assets_->foot_segments, centroids);
   } else {
     segment_centroids(*set.skeleton, set.mass, positions, rotations, centroids);
   }

@@ -178,6 +178,9 @@ struct WorldAssets {
   // The skeleton's body capsules (keep_clear_of_obstacles): one table for all worlds, so that a crowd
   // reads it from cache instead of each world its own copy.
   std::shared_ptr<const BodyVolumes> volumes;
+  // The mass segments whose centroid moves when a foot is pitched about its ankle (the floor stage): after
+  // such a tick the world takes only theirs again.
+  std::vector<int> foot_segments;
   int idle_node = -1;                  // where characters start and stop (the idle core clip, else walk)
   std::shared_ptr<const Policy> policy;
 

@@ -2,10 +2,13 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
+#include "engine/library/builtin.h"
 #include "engine/motion/bvh.h"
+#include "engine/motion/motion_set.h"
 #include "engine/motion/contacts.h"
 #include "engine/motion/kinematics.h"
 #include "engine/motion/support_polygon.h"
@@ -149,5 +152,39 @@ TEST_CASE("centre of mass: daz43 splits the trunk at abdomen and chest, cmu31 at
     segment_centroids(*clip.skeleton, model, pos, rot, centroids);
     const size_t h = static_cast<size_t>(head - model.segments.data());
     CHECK(centroids[h].y > pos[static_cast<size_t>(BodyMap::detect(*clip.skeleton).neck)].y);
+  }
+}
+
+TEST_CASE("centre of mass: turning the ankles moves the feet's centroids only, and those taken alone equal a full pass") {
+  const Params params;
+  const MotionSet builtin = make_builtin_motion_set(params);
+  const MotionSet daz43 = load_motion_set(test::repo() + "/assets/manifests/daz43.json", params);
+  for (const MotionSet* set : {&builtin, &daz43}) {
+    CAPTURE(set->name);
+    const Skeleton& sk = *set->skeleton;
+    std::vector<int> ankles;
+    for (const LegChain& leg : set->body.legs) ankles.push_back(leg.ankle);
+    const std::vector<int> moved = segments_moved_by_turning(sk, set->mass, ankles);
+    std::vector<std::string> names;
+    for (int s : moved) names.push_back(set->mass.segments[static_cast<size_t>(s)].name);
+    CHECK(names == std::vector<std::string>{"left_foot", "right_foot"});
+
+    const Pose pose = set->clips.front().clip.frames.front();
+    Pose turned = pose;
+    for (int a : ankles) turned.rotations[static_cast<size_t>(a)] = glm::angleAxis(0.3f, glm::vec3(1, 0, 0)) * pose.rotations[static_cast<size_t>(a)];
+    std::vector<glm::vec3> pos, before, after;
+    std::vector<glm::quat> rot;
+    forward_kinematics(sk, pose, pos, &rot);
+    segment_centroids(sk, set->mass, pos, rot, before);
+    forward_kinematics(sk, turned, pos, &rot);
+    segment_centroids(sk, set->mass, pos, rot, after);
+    std::vector<glm::vec3> partial = before;
+    segment_centroids(sk, set->mass, pos, rot, moved, partial);
+    for (size_t i = 0; i < after.size(); ++i) {
+      CAPTURE(set->mass.segments[i].name);
+      const bool listed = std::find(moved.begin(), moved.end(), static_cast<int>(i)) != moved.end();
+      CHECK((after[i] != before[i]) == listed);  // exactly the listed ones moved
+      CHECK(partial[i] == after[i]);              // to the bit
+    }
   }
 }

@@ -154,3 +154,26 @@ TEST_CASE("support polygon: from footprints") {
   CHECK(area(both) == doctest::Approx((0.2f + params.foot_width) * 0.2f));
   CHECK(both.center().x == doctest::Approx(0.0f).epsilon(1e-6));
 }
+
+TEST_CASE("support polygon: points added inside a hull leave it as it was, vertex for vertex") {
+  // A support polygon has at most eight points; the same hull must come from many more.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(-0.3f, 0.3f);
+  int checked = 0;
+  for (int trial = 0; trial < 500; ++trial) {
+    std::vector<glm::vec2> few(3 + static_cast<size_t>(trial % 6));
+    for (glm::vec2& p : few) p = {u(rng), u(rng)};
+    const std::vector<glm::vec2> hull = convex_hull(few);
+    if (hull.size() < 3) continue;
+    std::vector<glm::vec2> many = few;
+    glm::vec2 mean(0.0f);
+    for (glm::vec2 p : hull) mean += p;
+    mean /= static_cast<float>(hull.size());
+    for (float scale : {0.2f, 0.5f, 0.8f})
+      for (glm::vec2 p : hull) many.push_back(mean + scale * (p - mean));  // inside
+    REQUIRE(many.size() > 8);
+    CHECK(convex_hull(many) == hull);
+    ++checked;
+  }
+  CHECK(checked > 400);
+}

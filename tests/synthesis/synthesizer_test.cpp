@@ -290,3 +290,54 @@ TEST_CASE("with balance off a report changes no pose, and turning balance on aga
   }
   CHECK(balanced == 3);
 }
+
+TEST_CASE("after the floor stage pitched a foot, the centroids the synthesizer kept still stand above the ankles") {
+  // The World takes the kept centroids of every body part but the feet's when the floor stage only pitched
+  // a foot up (SynthesisScratch::centroids_but_feet_of_output): they must be those of the pose returned.
+  const Params params;
+  const MotionSet set = make_builtin_motion_set(params);
+  const Synthesizer synth(set, params);
+  const int walk = find_cyclic_clip(set, Role::Walk);
+  REQUIRE(walk >= 0);
+  const int target = set.find("duck");
+  REQUIRE(target >= 0);
+  const MotionClip& tc = set.clips[static_cast<size_t>(target)];
+  const Pose reference = tc.clip.frames[static_cast<size_t>(scan_reference_frame(set, tc, params))];
+  std::vector<int> ankles;
+  for (const LegChain& leg : set.body.legs) ankles.push_back(leg.ankle);
+  const std::vector<int> feet = segments_moved_by_turning(*set.skeleton, set.mass, ankles);
+  std::vector<char> is_foot(set.mass.segments.size(), 0);
+  for (int s : feet) is_foot[static_cast<size_t>(s)] = 1;
+
+  LocomotionLoop loop(set.clips[static_cast<size_t>(walk)]);
+  SynthesisState state;
+  SynthesisScratch scratch = synth.make_scratch();
+  Pose locomotion, out = synth.make_pose();
+  std::vector<glm::vec3> positions, centroids(set.mass.segments.size());
+  std::vector<glm::quat> rotations;
+  int feet_pitched = 0, foot_centroid_moved = 0;
+  for (int frame = 0; frame < 240; ++frame) {
+    CAPTURE(frame);
+    SynthesisInput in;
+    loop.next(locomotion, in.contacts);
+    locomotion.root_position.y -= 0.03f;  // the feet 3 cm into the floor: the floor stage pitches toes up
+    in.locomotion = &locomotion;
+    in.reference = &reference;
+    in.alpha = 0.8f;
+    in.dt = 1.0f / 60.0f;
+    in.keep_toes_above_floor = true;
+    synth.step(in, state, scratch, out);
+    if (!scratch.centroids_but_feet_of_output) continue;
+    REQUIRE(!scratch.support_of_output);
+    ++feet_pitched;
+    forward_kinematics(*set.skeleton, out, positions, &rotations);
+    segment_centroids(*set.skeleton, set.mass, positions, rotations, centroids);
+    for (size_t p = 0; p < centroids.size(); ++p) {
+      CAPTURE(p);
+      if (!is_foot[p]) REQUIRE(state.previous[p] == centroids[p]);
+      else foot_centroid_moved += state.previous[p] != centroids[p];
+    }
+  }
+  CHECK(feet_pitched > 20);
+  CHECK(foot_centroid_moved > 20);  // the feet's kept centroids are stale: the World takes those again
+}
