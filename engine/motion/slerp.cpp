@@ -142,10 +142,12 @@ void slerp_four(const glm::quat* qa, const glm::quat* qb, __m128 t, glm::quat* o
   q1 = _mm_div_ps(q1, length);
   q2 = _mm_div_ps(q2, length);
   q3 = _mm_div_ps(q3, length);
-  q0 = select(at_a, a0, select(at_b, b0, q0));
-  q1 = select(at_a, a1, select(at_b, b1, q1));
-  q2 = select(at_a, a2, select(at_b, b2, q2));
-  q3 = select(at_a, a3, select(at_b, b3, q3));
+  if ((taken_a | taken_b) != 0) {  // (usually no lane is at an end)
+    q0 = select(at_a, a0, select(at_b, b0, q0));
+    q1 = select(at_a, a1, select(at_b, b1, q1));
+    q2 = select(at_a, a2, select(at_b, b2, q2));
+    q3 = select(at_a, a3, select(at_b, b3, q3));
+  }
   _MM_TRANSPOSE4_PS(q0, q1, q2, q3);
   float* fo = reinterpret_cast<float*>(out);
   _mm_storeu_ps(fo, q0);
