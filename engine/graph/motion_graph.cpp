@@ -14,8 +14,9 @@
 
 namespace prep {
 
-glm::vec3 FloorTransform::apply(glm::vec3 p) const {
-  const float c = std::cos(angle), s = std::sin(angle);
+glm::vec3 FloorTransform::apply(glm::vec3 p) const { return apply(p, std::cos(angle), std::sin(angle)); }
+
+glm::vec3 FloorTransform::apply(glm::vec3 p, float c, float s) const {
   // Rotation about +Y by `angle` (as glm::angleAxis(angle, Y)): (x, z) -> (x c + z s, -x s + z c).
   return {p.x * c + p.z * s + offset.x, p.y, -p.x * s + p.z * c + offset.y};
 }

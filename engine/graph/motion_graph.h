@@ -21,6 +21,8 @@ struct FloorTransform {
   glm::vec2 offset{0.0f};  // (x, z)
 
   glm::vec3 apply(glm::vec3 p) const;        // a point
+  // apply() with the angle's cosine and sine given, taken once for many points: the same arithmetic.
+  glm::vec3 apply(glm::vec3 p, float cos_angle, float sin_angle) const;
   glm::quat rotation() const;                 // the rotation, to pre-multiply root rotations by
   FloorTransform then(const FloorTransform& outer) const;  // outer ∘ this
   static FloorTransform identity() { return {}; }

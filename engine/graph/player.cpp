@@ -24,7 +24,7 @@ int Player::natural_last(const Segment& s) const {
 int Player::earliest_exit(const Segment& s) const { return s.first + std::max(1, s.blend); }
 
 void Player::move(const FloorTransform& outer) {
-  for (Segment& s : segments_) s.place = s.place.then(outer);
+  for (Segment& s : segments_) s.set_place(s.place.then(outer));
 }
 
 void Player::start(int node, int frame, FloorTransform place) {
@@ -35,7 +35,7 @@ void Player::start(int node, int frame, FloorTransform place) {
   Segment s;
   s.node = node;
   s.first = frame >= 0 ? std::min(frame, mc.clip.frame_count() - 1) : (mc.cyclic ? mc.loop_first : 0);
-  s.place = place;
+  s.set_place(place);
   s.last = natural_last(s);
   segments_.assign(1, s);
   switches_.clear();
@@ -89,7 +89,7 @@ void Player::follow(int edge) {
   next.node = e.to;
   next.first = e.to_frame;
   next.stream_first = cur.stream_first + (cur.last - cur.first + 1);
-  next.place = e.align.then(cur.place);  // the next clip -> the current clip's coordinates -> world
+  next.set_place(e.align.then(cur.place));  // the next clip -> the current clip's coordinates -> world
   next.blend = e.blend_frames;
   next.blend_from = e.from_frame;
   next.last = natural_last(next);
@@ -150,8 +150,8 @@ float Player::duration() const { return frame_count() > 0 ? static_cast<float>(f
 void Player::pose_of(const Segment& s, int clip_frame, Pose& out) const {
   const Clip& clip = graph_->set().clips[static_cast<size_t>(s.node)].clip;
   out = clip.frames[static_cast<size_t>(std::clamp(clip_frame, 0, clip.frame_count() - 1))];
-  out.root_position = s.place.apply(out.root_position);
-  out.rotations[0] = glm::normalize(s.place.rotation() * out.rotations[0]);
+  out.root_position = s.placed(out.root_position);
+  out.rotations[0] = glm::normalize(s.place_rotation * out.rotations[0]);
 }
 
 size_t Player::segment_of(int frame) const {
@@ -219,12 +219,12 @@ bool Player::sample_within_segment(int i0, float w, Pose& out) const {
   const int last = clip.frame_count() - 1;
   const Pose& a = clip.frames[static_cast<size_t>(std::clamp(s.first + d0, 0, last))];
   const Pose& b = clip.frames[static_cast<size_t>(std::clamp(s.first + f1 - s.stream_first, 0, last))];
-  const glm::vec3 root_a = s.place.apply(a.root_position), root_b = s.place.apply(b.root_position);
+  const glm::vec3 root_a = s.placed(a.root_position), root_b = s.placed(b.root_position);
   out.root_position = root_a + (root_b - root_a) * w;
   const size_t n = a.rotations.size();
   out.rotations.resize(n);
   if (n == 0) return true;
-  const glm::quat place = s.place.rotation();
+  const glm::quat place = s.place_rotation;
   out.rotations[0] = slerp_shorter(glm::normalize(place * a.rotations[0]), glm::normalize(place * b.rotations[0]), w);
   slerp_shorter(a.rotations.data() + 1, b.rotations.data() + 1, w, out.rotations.data() + 1, n - 1);
   return true;

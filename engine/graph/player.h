@@ -5,6 +5,7 @@
 // Cyclic clips loop over their loop range, root motion accumulating from one cycle to the next.
 #pragma once
 
+#include <cmath>
 #include <vector>
 
 #include "engine/graph/motion_graph.h"
@@ -71,10 +72,21 @@ class Player {
     int first = 0;          // clip frames first..last are played
     int last = 0;           // for the open (last) segment: its natural end
     int stream_first = 0;   // stream frame of `first`
-    FloorTransform place;   // clip coordinates -> world
+    FloorTransform place;   // clip coordinates -> world (set_place)
+    // place's cosine, sine and root rotation, taken when it is set rather than for every frame sampled.
+    float place_cos = 1.0f, place_sin = 0.0f;
+    glm::quat place_rotation{1.0f, 0.0f, 0.0f, 0.0f};
     int blend = 0;          // frames at the start cross-faded with the previous clip ...
     int blend_from = 0;     // ... whose frames blend_from, blend_from + 1, ... keep playing meanwhile
     std::vector<float> blend_sign;  // per joint: +-1 so that each rotation's path is fixed at the switch
+
+    void set_place(const FloorTransform& p) {
+      place = p;
+      place_cos = std::cos(p.angle);
+      place_sin = std::sin(p.angle);
+      place_rotation = p.rotation();
+    }
+    glm::vec3 placed(glm::vec3 point) const { return place.apply(point, place_cos, place_sin); }
   };
   int natural_last(const Segment& s) const;
   int earliest_exit(const Segment& s) const;

@@ -101,6 +101,32 @@ TEST_CASE("player: the root keeps moving through a loop wrap") {
   }
 }
 
+TEST_CASE("player: moved on the floor, every segment's samples move with it, the one cross-fading in too") {
+  const MotionGraph g = MotionGraph::build(builtin(), Params().graph);
+  const int walk = g.find("walk"), idle = g.find("idle");
+  REQUIRE(walk >= 0);
+  REQUIRE(idle >= 0);
+  Player player(g);
+  player.start(walk, -1, FloorTransform{0.3f, glm::vec2(-1.0f, 2.0f)});
+  player.push(idle);
+  REQUIRE(player.switches().size() == 1);
+  const float fade = static_cast<float>(player.switches()[0].stream_frame + 1) / player.fps();
+  const FloorTransform outer{0.7f, glm::vec2(1.5f, -2.0f)};
+  Pose before, after;
+  for (float t : {0.1f, 0.45f, fade, fade + 2.0f}) {  // the walk, the fade into the idle, the idle
+    CAPTURE(t);
+    Player moved = player;
+    player.sample(t, before);
+    moved.move(outer);
+    moved.sample(t, after);
+    const glm::vec3 expected = outer.apply(before.root_position);
+    CHECK(glm::length(after.root_position - expected) < 1e-5f);
+    const glm::quat turned = outer.rotation() * before.rotations[0];
+    CHECK(std::abs(glm::dot(after.rotations[0], turned)) > 1.0f - 1e-6f);
+    for (size_t j = 1; j < before.rotations.size(); ++j) CHECK(after.rotations[j] == before.rotations[j]);
+  }
+}
+
 TEST_CASE("player: sampling between two frames is the interpolation of the frames to the bit, across switches and fades") {
   // sample() reads a frame pair inside one clip in place; across a switch or in a cross-fade it goes
   // through pose_at. Either way it must be interpolate(pose_at(i), pose_at(i + 1), w), bit for bit.
