@@ -19,9 +19,34 @@ float distance_to_segment(glm::vec2 p, glm::vec2 a, glm::vec2 b) {
   return glm::length(p - (a + ab * t));
 }
 
+// Four points that are, in the order given or its reverse, the corners of a convex quadrilateral with
+// every corner's turn far from straight (a foot's sole alone: a rectangle): its hull is the four of them
+// counter-clockwise from the lowest (x, then y), which is what the monotone chain gives. Each of the chain's
+// cross products is that of three of the corners, and any three of four corners in a cycle are three
+// consecutive ones; at 1e-4 m^2 or more none can change sign by rounding (the corners lie within a foot of
+// each other, so their differences are exact or nearly so, and a product of two is off by far less than
+// 1e-6 m^2). Returns false, touching nothing, for any other four points.
+bool convex_quadrilateral_into(const glm::vec2* points, std::vector<glm::vec2>& hull) {
+  constexpr float kClearTurn = 1e-4f;
+  float turn[4];
+  for (size_t i = 0; i < 4; ++i) turn[i] = cross(points[i], points[(i + 1) % 4], points[(i + 2) % 4]);
+  const bool counter_clockwise = turn[0] >= kClearTurn && turn[1] >= kClearTurn && turn[2] >= kClearTurn && turn[3] >= kClearTurn;
+  const bool clockwise = turn[0] <= -kClearTurn && turn[1] <= -kClearTurn && turn[2] <= -kClearTurn && turn[3] <= -kClearTurn;
+  if (!counter_clockwise && !clockwise) return false;
+  size_t lowest = 0;
+  for (size_t i = 1; i < 4; ++i) {
+    const glm::vec2 p = points[i], q = points[lowest];
+    if (p.x < q.x || (p.x == q.x && p.y < q.y)) lowest = i;
+  }
+  hull.resize(4);
+  for (size_t k = 0; k < 4; ++k) hull[k] = points[(counter_clockwise ? lowest + k : lowest + 4 - k) % 4];
+  return true;
+}
+
 // Andrew's monotone chain over points[0, n) (sorted in place) into `hull` (resized; no allocation once it
 // has the capacity).
 void hull_into(glm::vec2* points, size_t n, std::vector<glm::vec2>& hull) {
+  if (n == 4 && convex_quadrilateral_into(points, hull)) return;
   std::sort(points, points + n, [](glm::vec2 a, glm::vec2 b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
   n = static_cast<size_t>(std::unique(points, points + n, [](glm::vec2 a, glm::vec2 b) { return glm::length(a - b) <= kEpsilon; }) - points);
   if (n < 3) {
@@ -118,10 +143,11 @@ void support_polygon(const FootPoints& feet, const FrameContacts& contacts, cons
     // reaching back toward the heel; both give the whole sole.
     const glm::vec2 back = c.heel ? heel : toe - along * half;
     const glm::vec2 front = c.toe ? toe : heel + along * half;
-    for (glm::vec2 end : {back, front}) {
-      points[n++] = end + side * half;
-      points[n++] = end - side * half;
-    }
+    // Round the sole: back left and right, then front right and left (one foot alone is a rectangle).
+    points[n++] = back + side * half;
+    points[n++] = back - side * half;
+    points[n++] = front - side * half;
+    points[n++] = front + side * half;
   }
   hull_into(points, n, polygon.hull);
 }

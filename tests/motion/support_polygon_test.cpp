@@ -2,6 +2,7 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -176,4 +177,33 @@ TEST_CASE("support polygon: points added inside a hull leave it as it was, verte
     ++checked;
   }
   CHECK(checked > 400);
+}
+
+TEST_CASE("support polygon: a foot's four corners give the hull the monotone chain gives, to the bit") {
+  // Four corners of a clearly convex quadrilateral, in either turning order, are taken as they stand;
+  // any other four points go through the monotone chain. A fifth point repeating one of the four sends
+  // the same four through the chain: both must give the same vertices in the same order.
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> where(-500.0f, 500.0f), size(0.002f, 0.3f), turn(-3.14159f, 3.14159f),
+      jitter(-0.05f, 0.05f), unit(0.0f, 1.0f);
+  int quadrilaterals = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const glm::vec2 centre(where(rng), where(rng));
+    const float a = turn(rng), length = size(rng), width = size(rng);
+    const glm::vec2 along(std::sin(a), std::cos(a)), side(along.y, -along.x);
+    std::vector<glm::vec2> corners = {centre - along * length + side * width, centre - along * length - side * width,
+                                      centre + along * length - side * width, centre + along * length + side * width};
+    if (trial % 3 == 1)
+      for (glm::vec2& c : corners) c += glm::vec2(jitter(rng), jitter(rng));  // any quadrilateral, convex or not
+    if (trial % 5 == 2) std::swap(corners[1], corners[2]);                      // the corners out of turn
+    if (trial % 7 == 3) corners[3] = corners[0] + 0.5f * unit(rng) * (corners[1] - corners[0]);  // one on a side
+    if (trial % 2) std::reverse(corners.begin(), corners.end());
+    std::vector<glm::vec2> repeated = corners;
+    repeated.push_back(corners[trial % 4]);
+    const std::vector<glm::vec2> hull = convex_hull(corners);
+    CAPTURE(trial);
+    REQUIRE(hull == convex_hull(repeated));
+    quadrilaterals += hull.size() == 4;
+  }
+  CHECK(quadrilaterals > 10000);
 }
