@@ -166,7 +166,7 @@ void Synthesizer::stage_ik(const SynthesisInput& in, SynthesisState& state, Synt
   all_pass_.run(out, s.positions, s.rotations);
 }
 
-void Synthesizer::stage_balance(const SynthesisInput& in, SynthesisState& state, SynthesisScratch& s, Pose& out,
+bool Synthesizer::stage_balance(const SynthesisInput& in, SynthesisState& state, SynthesisScratch& s, Pose& out,
                                 SynthesisReport* report) const {
   // Needs s.positions / s.rotations = forward kinematics of `out` (stage_ik leaves them so).
   const BalanceParams& bp = params_.balance;
@@ -179,7 +179,7 @@ void Synthesizer::stage_balance(const SynthesisInput& in, SynthesisState& state,
     if (!report) {
       s.support_of_output = false;
       s.centroids_but_feet_of_output = false;
-      return;
+      return false;
     }
   }
   const FootPoints feet = foot_points(*skeleton_, body_, s.positions, s.rotations);
@@ -248,16 +248,18 @@ void Synthesizer::stage_balance(const SynthesisInput& in, SynthesisState& state,
   std::copy(state.previous.begin(), state.previous.begin() + static_cast<long>(n_parts), state.before_previous.begin());
   std::copy(final_centroids, final_centroids + n_parts, state.previous.begin());
   state.history = bp.enabled ? std::min(state.history + 1, 2) : 0;
+  return result.optimized;
 }
 
-void Synthesizer::step(const SynthesisInput& in, SynthesisState& state, SynthesisScratch& scratch, Pose& out,
+bool Synthesizer::step(const SynthesisInput& in, SynthesisState& state, SynthesisScratch& scratch, Pose& out,
                        SynthesisReport* report) const {
   if (!in.locomotion || !in.reference) throw std::invalid_argument("Synthesizer::step: no locomotion or reference pose");
   stage_blend(in, scratch, out);
   stage_trajectory(in, state, scratch, out);
   stage_ik(in, state, scratch, out);
-  stage_balance(in, state, scratch, out, report);
+  const bool balanced = stage_balance(in, state, scratch, out, report);
   if (in.keep_toes_above_floor) stage_floor(scratch, out, true);
+  return balanced;
 }
 
 void Synthesizer::stage_floor(SynthesisScratch& s, Pose& out, bool kinematics_given) const {

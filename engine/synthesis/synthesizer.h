@@ -118,15 +118,16 @@ class Synthesizer {
   SynthesisScratch make_scratch() const;
   Pose make_pose() const { return Pose(skeleton_->size()); }
 
-  // One frame. `out` must have one rotation per joint (make_pose()).
-  void step(const SynthesisInput& in, SynthesisState& state, SynthesisScratch& scratch, Pose& out,
+  // One frame. `out` must have one rotation per joint (make_pose()). Returns whether the balance optimizer
+  // shaped it (SynthesisReport::balanced, without the rest of a report).
+  bool step(const SynthesisInput& in, SynthesisState& state, SynthesisScratch& scratch, Pose& out,
             SynthesisReport* report = nullptr) const;
 
   // The stages of step(), in order, for benchmarks and tests.
   void stage_blend(const SynthesisInput& in, SynthesisScratch& scratch, Pose& out) const;
   void stage_trajectory(const SynthesisInput& in, SynthesisState& state, SynthesisScratch& scratch, Pose& out) const;
   void stage_ik(const SynthesisInput& in, SynthesisState& state, SynthesisScratch& scratch, Pose& out) const;
-  void stage_balance(const SynthesisInput& in, SynthesisState& state, SynthesisScratch& scratch, Pose& out,
+  bool stage_balance(const SynthesisInput& in, SynthesisState& state, SynthesisScratch& scratch, Pose& out,
                      SynthesisReport* report) const;
   // A toe tip below the floor is pitched up to it (keep_toes_above_floor in foot_ik.h). kinematics_given:
   // scratch.positions / rotations already hold the forward kinematics of `out` (the stages before leave

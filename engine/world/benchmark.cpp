@@ -169,7 +169,8 @@ CrowdBenchmark benchmark_crowd(const Scenario& scenario, std::shared_ptr<const W
     // Unattended but always synthesizing: no launches (a target clip plays recorded frames, no synthesis).
     worlds.back()->set_auto(false);
     worlds.back()->set_stage_timing(false);  // as a crowd's worlds: no clock reads per character,
-    worlds.back()->set_alpha_history(false);  // and no alpha history,
+    worlds.back()->set_alpha_history(false);  // no alpha history,
+    worlds.back()->set_balance_view(false);   // no COM and support polygon for panels,
     // and their decisions spread over ticks as a crowd's are.
     worlds.back()->hold_decisions(k % Crowd::kDecisionPhases);
   }
@@ -192,7 +193,7 @@ CrowdBenchmark benchmark_crowd(const Scenario& scenario, std::shared_ptr<const W
       if (count)
         for (const WorldCharacter& c : worlds[i]->characters()) {
           run_synthesized += !c.in_target;
-          run_balanced += !c.in_target && c.report.balanced;
+          run_balanced += !c.in_target && c.balanced;
         }
     }
     synthesized[static_cast<size_t>(block)] += run_synthesized;

@@ -82,6 +82,7 @@ std::unique_ptr<World> Crowd::make_lane(int i) {
   world->set_auto(true);
   world->set_stage_timing(false);
   world->set_alpha_history(false);
+  world->set_balance_view(false);
   world->hold_decisions(i % kDecisionPhases);
   started_[static_cast<size_t>(i)] = time_;
   done_for_[static_cast<size_t>(i)] = 0.0f;

@@ -584,6 +584,11 @@ void World::update_balance(int index, bool kinematics_in_scratch) {
   Runtime& rt = *runtime_[static_cast<size_t>(index)];
   const MotionSet& set = *assets_->set;
   if (!kinematics_in_scratch) forward_kinematics(*set.skeleton, c.pose, rt.scratch.positions, &rt.scratch.rotations);
+  rt.kinematics_of_pose = true;
+  if (!balance_view_) {
+    c.contacts = rt.stream.contacts();
+    return;
+  }
   const std::vector<glm::vec3>& positions = rt.scratch.positions;
   const std::vector<glm::quat>& rotations = rt.scratch.rotations;
   std::vector<glm::vec3>& centroids = call_scratch().centroids;
@@ -605,7 +610,6 @@ void World::update_balance(int index, bool kinematics_in_scratch) {
     support_polygon(foot_points(*set.skeleton, set.body, positions, rotations), c.contacts, params_.contacts, c.support);
   }
   c.com_in_support = !c.support.empty() && c.support.contains({c.com.x, c.com.z});
-  rt.kinematics_of_pose = true;
 }
 
 void World::step_character(int index) {
@@ -678,7 +682,7 @@ void World::step_character(int index) {
   if (c.in_target) {
     out = rt.stream.pose();
     if (rt.fit.lift != 0.0f) fit_pose(index, out);
-    c.report = SynthesisReport{};
+    c.balanced = false;
   } else {
     const TargetMotion& t = assets_->target(c.prepared_for);
     SynthesisInput in;
@@ -697,7 +701,7 @@ void World::step_character(int index) {
       in.displacement = rt.last_displacement;  // the stream's last step, so the gait does not hitch
       rt.reseed = false;
     }
-    synthesizer_->step(in, rt.synthesis, rt.scratch, out, &c.report);
+    c.balanced = synthesizer_->step(in, rt.synthesis, rt.scratch, out);
     if (!in.has_displacement) rt.last_displacement = rt.stream.pose().root_position - rt.synthesis_previous_root;
     rt.synthesis_previous_root = rt.stream.pose().root_position;
     c.clip = rt.stream.node();

@@ -277,12 +277,12 @@ struct WorldCharacter {
   bool reached_goal = false;
   float reached_time = -1.0f;
 
-  // Balance (Sec. 5.3) of this tick's pose.
+  // Balance (Sec. 5.3) of this tick's pose: kept while the world's balance view is on (set_balance_view).
   glm::vec3 com{0.0f};
   SupportPolygon support;
   bool com_in_support = false;
   FrameContacts contacts{};
-  SynthesisReport report;
+  bool balanced = false;  // the balance optimizer shaped this tick's pose
   float last_attack = -1e9f;
 };
 
@@ -411,6 +411,11 @@ class World {
     keep_alpha_history_ = on;
     if (!on) alpha_history_ = {};
   }
+  // Whether step() keeps each character's com, support and com_in_support (on by default: the panels draw
+  // them, evaluation counts them). A crowd, which shows neither, turns it off: they were 6% of its tick.
+  // The synthesis is the same either way (its optimizer takes the support polygon and centroids it needs
+  // itself), and so is every pose; turned on again, they are those of the next tick's pose.
+  void set_balance_view(bool on) { balance_view_ = on; }
   // The next `ticks` steps take no decision (the characters play on what they play). The worlds of a
   // crowd, started on one tick, take their decisions on the same ticks ever after (the actions last
   // alike): a crowd of 20,000 took 13,000 decisions and 4,000 motion switches on one frame, 13 ms over its
@@ -492,6 +497,7 @@ class World {
   StageTimes stage_times_;
   bool stage_timing_ = true;
   bool keep_alpha_history_ = true;
+  bool balance_view_ = true;
   std::chrono::steady_clock::time_point stage_now() const {
     return stage_timing_ ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
   }

@@ -341,3 +341,36 @@ TEST_CASE("after the floor stage pitched a foot, the centroids the synthesizer k
   CHECK(feet_pitched > 20);
   CHECK(foot_centroid_moved > 20);  // the feet's kept centroids are stale: the World takes those again
 }
+
+TEST_CASE("step() tells whether the balance optimizer ran, as a report would, without one") {
+  const Params params;
+  const MotionSet set = make_builtin_motion_set(params);
+  const Synthesizer synth(set, params);
+  const int walk = find_cyclic_clip(set, Role::Walk);
+  REQUIRE(walk >= 0);
+  const int target = set.find("crawl");
+  REQUIRE(target >= 0);
+  const MotionClip& tc = set.clips[static_cast<size_t>(target)];
+  const Pose reference = tc.clip.frames[static_cast<size_t>(scan_reference_frame(set, tc, params))];
+  LocomotionLoop loop(set.clips[static_cast<size_t>(walk)]);
+  SynthesisState reported, quiet;
+  SynthesisScratch scratch = synth.make_scratch();
+  Pose locomotion, out_reported = synth.make_pose(), out_quiet = synth.make_pose();
+  int balanced = 0, not_balanced = 0;
+  for (int frame = 0; frame < 180; ++frame) {
+    CAPTURE(frame);
+    SynthesisInput in;
+    loop.next(locomotion, in.contacts);
+    in.locomotion = &locomotion;
+    in.reference = &reference;
+    in.alpha = static_cast<float>(frame) / 180.0f;  // below the optimizer's threshold, then above it
+    in.dt = 1.0f / 60.0f;
+    SynthesisReport report;
+    REQUIRE(synth.step(in, reported, scratch, out_reported, &report) == report.balanced);
+    REQUIRE(synth.step(in, quiet, scratch, out_quiet) == report.balanced);
+    REQUIRE(out_quiet.rotations == out_reported.rotations);
+    (report.balanced ? balanced : not_balanced) += 1;
+  }
+  CHECK(balanced > 30);
+  CHECK(not_balanced > 30);
+}

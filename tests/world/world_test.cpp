@@ -176,6 +176,43 @@ TEST_CASE("without auto launch the user arrives, stops on the launch point fully
   CHECK(world.launches()[0].alpha_at_launch == doctest::Approx(1.0));
 }
 
+TEST_CASE("a world without its balance view makes the same poses, and turned on again it shows the next tick's") {
+  World shown(scenario("obstacles"), builtin_assets()), hidden(scenario("obstacles"), builtin_assets());
+  for (World* w : {&shown, &hidden}) w->set_auto(true);
+  hidden.set_balance_view(false);
+  const MotionSet& set = *shown.assets().set;
+  std::vector<SupportPolygon> as_built;  // taken when the world was made, and not since
+  for (const WorldCharacter& c : hidden.characters()) as_built.push_back(c.support);
+  for (int tick = 0; tick < 60 * 20; ++tick) {
+    shown.step();
+    hidden.step();
+    CAPTURE(tick);
+    for (size_t i = 0; i < shown.characters().size(); ++i) {
+      const WorldCharacter &a = shown.characters()[i], &b = hidden.characters()[i];
+      REQUIRE(a.pose.rotations == b.pose.rotations);
+      REQUIRE(a.pose.root_position == b.pose.root_position);
+      REQUIRE(a.balanced == b.balanced);
+      CHECK(b.support.hull == as_built[i].hull);
+    }
+  }
+  CHECK(shown.launches().size() >= 2);
+  CHECK(hidden.launches().size() == shown.launches().size());
+  hidden.set_balance_view(true);
+  shown.step();
+  hidden.step();
+  std::vector<glm::vec3> positions, centroids;
+  std::vector<glm::quat> rotations;
+  for (size_t i = 0; i < hidden.characters().size(); ++i) {
+    const WorldCharacter& c = hidden.characters()[i];
+    forward_kinematics(*set.skeleton, c.pose, positions, &rotations);
+    segment_centroids(*set.skeleton, set.mass, positions, rotations, centroids);
+    CHECK(c.com == center_of_mass(set.mass, centroids));
+    CHECK(c.com == shown.characters()[i].com);
+    CHECK(c.support.hull == shown.characters()[i].support.hull);
+    CHECK(c.com_in_support == shown.characters()[i].com_in_support);
+  }
+}
+
 TEST_CASE("every tick the COM and the support polygon are those of the pose shown, however the pose was made") {
   // The world reuses the synthesizer's kinematics and support polygon when the pose is the synthesized one;
   // through launches, cross-fades and recorded clips they must equal a fresh computation from the pose.
