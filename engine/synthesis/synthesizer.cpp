@@ -178,12 +178,21 @@ bool Synthesizer::stage_balance(const SynthesisInput& in, SynthesisState& state,
     state.correction.valid = false;
     if (!report) {
       s.support_of_output = false;
+      s.centroids_of_output = false;
       s.centroids_but_feet_of_output = false;
       return false;
     }
   }
-  const FootPoints feet = foot_points(*skeleton_, body_, s.positions, s.rotations);
-  support_polygon(feet, in.contacts, params_.contacts, s.support);
+  // The support polygon serves the optimizer (Eq. 6) and a report; below the optimizer's alpha threshold
+  // without a report nothing reads it. The body-part centroids are taken every frame: they are the
+  // smoothness term's history (Eq. 8-9) when the optimizer runs on the next ones.
+  const bool may_optimize = bp.enabled && in.alpha >= bp.alpha_threshold && bp.max_steps > 0;
+  const bool take_support = may_optimize || report;
+  FootPoints feet{};
+  if (take_support) {
+    feet = foot_points(*skeleton_, body_, s.positions, s.rotations);
+    support_polygon(feet, in.contacts, params_.contacts, s.support);
+  }
   const size_t n_parts = balance_model_.parts.size();
   BalanceScratch& b = thread_balance_scratch(skeleton_->size(), static_cast<int>(n_parts));
   part_centroids(*skeleton_, balance_model_, s.positions, s.rotations, b.style.data());
@@ -194,9 +203,9 @@ bool Synthesizer::stage_balance(const SynthesisInput& in, SynthesisState& state,
     targets.previous = state.previous.data();
     targets.before_previous = state.before_previous.data();
   }
-  const bool has_support = !s.support.empty();
+  const bool has_support = take_support && !s.support.empty();
   if (has_support) targets.support_centre = s.support.center();
-  const bool optimize = bp.enabled && has_support && in.alpha >= bp.alpha_threshold && bp.max_steps > 0;
+  const bool optimize = may_optimize && has_support;
 
   BalanceResult result;
   const glm::vec3* final_centroids = b.style.data();
@@ -243,7 +252,8 @@ bool Synthesizer::stage_balance(const SynthesisInput& in, SynthesisState& state,
     }
   }
 
-  s.support_of_output = true;  // and `state.previous` holds its centroids (the World reads them)
+  s.support_of_output = take_support;
+  s.centroids_of_output = true;  // `state.previous` holds them (the World reads them)
   s.centroids_but_feet_of_output = false;
   std::copy(state.previous.begin(), state.previous.begin() + static_cast<long>(n_parts), state.before_previous.begin());
   std::copy(final_centroids, final_centroids + n_parts, state.previous.begin());
@@ -266,6 +276,7 @@ void Synthesizer::stage_floor(SynthesisScratch& s, Pose& out, bool kinematics_gi
   if (!kinematics_given) {
     forward_kinematics(*skeleton_, out, s.positions, &s.rotations);  // sizes the buffers of any scratch
     s.support_of_output = false;  // a pose the stages before did not make
+    s.centroids_of_output = false;
     s.centroids_but_feet_of_output = false;
   }
   const float root_height = out.root_position.y;
@@ -275,11 +286,13 @@ void Synthesizer::stage_floor(SynthesisScratch& s, Pose& out, bool kinematics_gi
   if (out.root_position.y != root_height) {
     all_pass_.run(out, s.positions, s.rotations);
     s.support_of_output = false;
+    s.centroids_of_output = false;
     s.centroids_but_feet_of_output = false;
   } else if (turned > 0) {
     foot_pass_.run(out, s.positions, s.rotations);
-    s.centroids_but_feet_of_output = s.support_of_output || s.centroids_but_feet_of_output;
+    s.centroids_but_feet_of_output = s.centroids_of_output || s.centroids_but_feet_of_output;
     s.support_of_output = false;
+    s.centroids_of_output = false;
   }
 }
 

@@ -93,8 +93,11 @@ struct SynthesisScratch {
   glm::vec3 locomotion_jump{0.0f};  // how far the locomotion stream was moved this frame beyond its displacement
   SupportPolygon support;
   // `support` is that of the pose the last step() or stage_floor() returned: its feet and contacts are
-  // those the balance stage saw (the floor stage changed nothing).
+  // those the balance stage saw (the floor stage changed nothing), and the stage took it (the optimizer
+  // could run, or a report asked for it).
   bool support_of_output = false;
+  // SynthesisState::previous holds the body-part centroids of that pose.
+  bool centroids_of_output = false;
   // The pose the last step() or stage_floor() returned differs from the one the balance stage left only by
   // feet pitched up about their ankles (stage_floor): the body-part centroids it kept (SynthesisState::
   // previous) still stand for every part whose joints are above the ankles.

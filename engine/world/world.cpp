@@ -593,7 +593,7 @@ void World::update_balance(int index, bool kinematics_in_scratch) {
   const std::vector<glm::quat>& rotations = rt.scratch.rotations;
   std::vector<glm::vec3>& centroids = call_scratch().centroids;
   const bool feet_pitched = kinematics_in_scratch && rt.scratch.centroids_but_feet_of_output;
-  if ((kinematics_in_scratch && rt.scratch.support_of_output) || feet_pitched) {
+  if ((kinematics_in_scratch && rt.scratch.centroids_of_output) || feet_pitched) {
     // The pose is the synthesizer's output as it left it: its body-part centroids (one per mass segment,
     // in the same order, by the same arithmetic) are those it keeps for the next frame's smoothness term.
     // Feet the floor stage pitched up since move their own segments only.

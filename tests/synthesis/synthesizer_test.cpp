@@ -258,7 +258,8 @@ TEST_CASE("with balance off a report changes no pose, and turning balance on aga
     SynthesisReport report;
     synth_off.step(in, reported, scratch, out_reported, &report);
     REQUIRE(!report.balanced);
-    if (scratch.support_of_output) {  // (the floor stage lifted no toe) the World takes this pose's centroids
+    if (scratch.centroids_of_output) {  // (the floor stage lifted no toe) the World takes this pose's centroids
+      REQUIRE(scratch.support_of_output);  // a report asks for the support polygon
       ++centroids_given;
       std::vector<glm::vec3> positions, centroids(synth_off.balance_model().parts.size());
       std::vector<glm::quat> rotations;
@@ -268,6 +269,7 @@ TEST_CASE("with balance off a report changes no pose, and turning balance on aga
     }
     synth_off.step(in, quiet, scratch, out_quiet);
     REQUIRE(!scratch.support_of_output);
+    REQUIRE(!scratch.centroids_of_output);
     REQUIRE(out_quiet.rotations == out_reported.rotations);
     REQUIRE(out_quiet.root_position == out_reported.root_position);
     synth_on.step(in, below_threshold, scratch, out_below);
@@ -356,6 +358,8 @@ TEST_CASE("step() tells whether the balance optimizer ran, as a report would, wi
   SynthesisState reported, quiet;
   SynthesisScratch scratch = synth.make_scratch();
   Pose locomotion, out_reported = synth.make_pose(), out_quiet = synth.make_pose();
+  std::vector<glm::vec3> positions, centroids(synth.balance_model().parts.size());
+  std::vector<glm::quat> rotations;
   int balanced = 0, not_balanced = 0;
   for (int frame = 0; frame < 180; ++frame) {
     CAPTURE(frame);
@@ -365,11 +369,19 @@ TEST_CASE("step() tells whether the balance optimizer ran, as a report would, wi
     in.reference = &reference;
     in.alpha = static_cast<float>(frame) / 180.0f;  // below the optimizer's threshold, then above it
     in.dt = 1.0f / 60.0f;
+    in.keep_toes_above_floor = false;  // the pose as the balance stage leaves it
     SynthesisReport report;
     REQUIRE(synth.step(in, reported, scratch, out_reported, &report) == report.balanced);
     REQUIRE(synth.step(in, quiet, scratch, out_quiet) == report.balanced);
     REQUIRE(out_quiet.rotations == out_reported.rotations);
     (report.balanced ? balanced : not_balanced) += 1;
+    // Below the optimizer's threshold and without a report, no support polygon is taken; the centroids are,
+    // for the smoothness history and the World.
+    REQUIRE(scratch.support_of_output == (in.alpha >= params.balance.alpha_threshold));
+    REQUIRE(scratch.centroids_of_output);
+    forward_kinematics(*set.skeleton, out_quiet, positions, &rotations);
+    part_centroids(*set.skeleton, synth.balance_model(), positions, rotations, centroids.data());
+    for (size_t p = 0; p < centroids.size(); ++p) REQUIRE(quiet.previous[p] == centroids[p]);
   }
   CHECK(balanced > 30);
   CHECK(not_balanced > 30);
