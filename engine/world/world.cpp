@@ -583,12 +583,12 @@ void World::update_balance(int index, bool kinematics_in_scratch) {
   WorldCharacter& c = characters_[static_cast<size_t>(index)];
   Runtime& rt = *runtime_[static_cast<size_t>(index)];
   const MotionSet& set = *assets_->set;
-  if (!kinematics_in_scratch) forward_kinematics(*set.skeleton, c.pose, rt.scratch.positions, &rt.scratch.rotations);
-  rt.kinematics_of_pose = true;
-  if (!balance_view_) {
+  if (!kinematics_in_scratch) {  // (a new world: step_character takes the contacts with the pose)
+    forward_kinematics(*set.skeleton, c.pose, rt.scratch.positions, &rt.scratch.rotations);
     c.contacts = rt.stream.contacts();
-    return;
   }
+  rt.kinematics_of_pose = true;
+  if (!balance_view_) return;
   const std::vector<glm::vec3>& positions = rt.scratch.positions;
   const std::vector<glm::quat>& rotations = rt.scratch.rotations;
   std::vector<glm::vec3>& centroids = call_scratch().centroids;
@@ -603,7 +603,6 @@ void World::update_balance(int index, bool kinematics_in_scratch) {
     segment_centroids(*set.skeleton, set.mass, positions, rotations, centroids);
   }
   c.com = center_of_mass(set.mass, centroids);
-  c.contacts = rt.stream.contacts();
   if (kinematics_in_scratch && rt.scratch.support_of_output) {
     c.support = rt.scratch.support;  // the synthesizer's: the same feet, the same contacts
   } else {
@@ -679,6 +678,7 @@ void World::step_character(int index) {
   Pose& out = rt.out;  // kept between ticks: no allocation per tick
   out.rotations.resize(static_cast<size_t>(assets_->set->skeleton->size()));
   c.alpha = alpha;
+  c.contacts = rt.stream.contacts();  // of the frame the stream stands at, whatever makes the pose
   if (c.in_target) {
     out = rt.stream.pose();
     if (rt.fit.lift != 0.0f) fit_pose(index, out);
@@ -687,7 +687,7 @@ void World::step_character(int index) {
     const TargetMotion& t = assets_->target(c.prepared_for);
     SynthesisInput in;
     in.locomotion = &rt.stream.pose();
-    in.contacts = rt.stream.contacts();
+    in.contacts = c.contacts;
     in.reference = t.clip >= 0 ? &t.reference : &rt.stream.pose();
     in.alpha = t.clip >= 0 ? alpha : 0.0f;
     in.dt = dt;
