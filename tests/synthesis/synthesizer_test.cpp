@@ -293,42 +293,61 @@ TEST_CASE("with balance off a report changes no pose, and turning balance on aga
   CHECK(balanced == 3);
 }
 
+namespace {
+
+// The built-in walk looped toward a target's T_p: one SynthesisInput per frame at 60 Hz, its locomotion
+// pose lowered by `sink` metres.
+struct WalkToward {
+  Params params;
+  MotionSet set = make_builtin_motion_set(params);
+  Synthesizer synth{set, params};
+  Pose reference, locomotion;
+  LocomotionLoop loop;
+
+  explicit WalkToward(const char* target)
+      : reference(reference_of(set, target, params)), loop(set.clips[static_cast<size_t>(find_cyclic_clip(set, Role::Walk))]) {}
+  SynthesisInput next(float alpha, bool keep_toes_above_floor, float sink = 0.0f) {
+    SynthesisInput in;
+    loop.next(locomotion, in.contacts);
+    locomotion.root_position.y -= sink;
+    in.locomotion = &locomotion;
+    in.reference = &reference;
+    in.alpha = alpha;
+    in.dt = 1.0f / 60.0f;
+    in.keep_toes_above_floor = keep_toes_above_floor;
+    return in;
+  }
+  static Pose reference_of(const MotionSet& set, const char* target, const Params& params) {
+    const int t = set.find(target);
+    REQUIRE(t >= 0);
+    const MotionClip& tc = set.clips[static_cast<size_t>(t)];
+    return tc.clip.frames[static_cast<size_t>(scan_reference_frame(set, tc, params))];
+  }
+};
+
+}  // namespace
+
 TEST_CASE("after the floor stage pitched a foot, the centroids the synthesizer kept still stand above the ankles") {
   // The World takes the kept centroids of every body part but the feet's when the floor stage only pitched
   // a foot up (SynthesisScratch::centroids_but_feet_of_output): they must be those of the pose returned.
-  const Params params;
-  const MotionSet set = make_builtin_motion_set(params);
-  const Synthesizer synth(set, params);
-  const int walk = find_cyclic_clip(set, Role::Walk);
-  REQUIRE(walk >= 0);
-  const int target = set.find("duck");
-  REQUIRE(target >= 0);
-  const MotionClip& tc = set.clips[static_cast<size_t>(target)];
-  const Pose reference = tc.clip.frames[static_cast<size_t>(scan_reference_frame(set, tc, params))];
+  WalkToward w("duck");
+  const MotionSet& set = w.set;
   std::vector<int> ankles;
   for (const LegChain& leg : set.body.legs) ankles.push_back(leg.ankle);
   const std::vector<int> feet = segments_moved_by_turning(*set.skeleton, set.mass, ankles);
   std::vector<char> is_foot(set.mass.segments.size(), 0);
   for (int s : feet) is_foot[static_cast<size_t>(s)] = 1;
 
-  LocomotionLoop loop(set.clips[static_cast<size_t>(walk)]);
   SynthesisState state;
-  SynthesisScratch scratch = synth.make_scratch();
-  Pose locomotion, out = synth.make_pose();
+  SynthesisScratch scratch = w.synth.make_scratch();
+  Pose out = w.synth.make_pose();
   std::vector<glm::vec3> positions, centroids(set.mass.segments.size());
   std::vector<glm::quat> rotations;
   int feet_pitched = 0, foot_centroid_moved = 0;
   for (int frame = 0; frame < 240; ++frame) {
     CAPTURE(frame);
-    SynthesisInput in;
-    loop.next(locomotion, in.contacts);
-    locomotion.root_position.y -= 0.03f;  // the feet 3 cm into the floor: the floor stage pitches toes up
-    in.locomotion = &locomotion;
-    in.reference = &reference;
-    in.alpha = 0.8f;
-    in.dt = 1.0f / 60.0f;
-    in.keep_toes_above_floor = true;
-    synth.step(in, state, scratch, out);
+    // The feet 3 cm into the floor: the floor stage pitches toes up.
+    w.synth.step(w.next(0.8f, true, 0.03f), state, scratch, out);
     if (!scratch.centroids_but_feet_of_output) continue;
     REQUIRE(!scratch.support_of_output);
     ++feet_pitched;
@@ -345,31 +364,18 @@ TEST_CASE("after the floor stage pitched a foot, the centroids the synthesizer k
 }
 
 TEST_CASE("step() tells whether the balance optimizer ran, as a report would, without one") {
-  const Params params;
-  const MotionSet set = make_builtin_motion_set(params);
-  const Synthesizer synth(set, params);
-  const int walk = find_cyclic_clip(set, Role::Walk);
-  REQUIRE(walk >= 0);
-  const int target = set.find("crawl");
-  REQUIRE(target >= 0);
-  const MotionClip& tc = set.clips[static_cast<size_t>(target)];
-  const Pose reference = tc.clip.frames[static_cast<size_t>(scan_reference_frame(set, tc, params))];
-  LocomotionLoop loop(set.clips[static_cast<size_t>(walk)]);
+  WalkToward w("crawl");
+  const Synthesizer& synth = w.synth;
   SynthesisState reported, quiet;
   SynthesisScratch scratch = synth.make_scratch();
-  Pose locomotion, out_reported = synth.make_pose(), out_quiet = synth.make_pose();
+  Pose out_reported = synth.make_pose(), out_quiet = synth.make_pose();
   std::vector<glm::vec3> positions, centroids(synth.balance_model().parts.size());
   std::vector<glm::quat> rotations;
   int balanced = 0, not_balanced = 0;
   for (int frame = 0; frame < 180; ++frame) {
     CAPTURE(frame);
-    SynthesisInput in;
-    loop.next(locomotion, in.contacts);
-    in.locomotion = &locomotion;
-    in.reference = &reference;
-    in.alpha = static_cast<float>(frame) / 180.0f;  // below the optimizer's threshold, then above it
-    in.dt = 1.0f / 60.0f;
-    in.keep_toes_above_floor = false;  // the pose as the balance stage leaves it
+    // Below the optimizer's threshold, then above it; the pose as the balance stage leaves it.
+    const SynthesisInput in = w.next(static_cast<float>(frame) / 180.0f, false);
     SynthesisReport report;
     REQUIRE(synth.step(in, reported, scratch, out_reported, &report) == report.balanced);
     REQUIRE(synth.step(in, quiet, scratch, out_quiet) == report.balanced);
@@ -377,10 +383,10 @@ TEST_CASE("step() tells whether the balance optimizer ran, as a report would, wi
     (report.balanced ? balanced : not_balanced) += 1;
     // Below the optimizer's threshold and without a report, no support polygon is taken; the centroids are,
     // for the smoothness history and the World.
-    REQUIRE(scratch.support_of_output == (in.alpha >= params.balance.alpha_threshold));
+    REQUIRE(scratch.support_of_output == (in.alpha >= w.params.balance.alpha_threshold));
     REQUIRE(scratch.centroids_of_output);
-    forward_kinematics(*set.skeleton, out_quiet, positions, &rotations);
-    part_centroids(*set.skeleton, synth.balance_model(), positions, rotations, centroids.data());
+    forward_kinematics(*w.set.skeleton, out_quiet, positions, &rotations);
+    part_centroids(*w.set.skeleton, synth.balance_model(), positions, rotations, centroids.data());
     for (size_t p = 0; p < centroids.size(); ++p) REQUIRE(quiet.previous[p] == centroids[p]);
   }
   CHECK(balanced > 30);
