@@ -480,6 +480,20 @@ float largest_move(const BalanceModel& model, const glm::vec3* a, const glm::vec
   return std::sqrt(largest2);
 }
 
+// largest_move(a, b) and largest_move(a, c) in one pass over a.
+void largest_moves(const BalanceModel& model, const glm::vec3* a, const glm::vec3* b, const glm::vec3* c,
+                   float& from_b, float& from_c) {
+  float largest_b2 = 0.0f, largest_c2 = 0.0f;
+  for (int i : model.moved_parts) {
+    const V3 x = V3::load(a[static_cast<size_t>(i)]);
+    const V3 vb = x - V3::load(b[static_cast<size_t>(i)]), vc = x - V3::load(c[static_cast<size_t>(i)]);
+    largest_b2 = std::max(largest_b2, dot(vb, vb));
+    largest_c2 = std::max(largest_c2, dot(vc, vc));
+  }
+  from_b = std::sqrt(largest_b2);
+  from_c = std::sqrt(largest_c2);
+}
+
 inline float bound_or_infinity(float bound) { return bound > 0.0f ? bound : INFINITY; }
 
 }  // namespace
@@ -531,6 +545,11 @@ BalanceResult optimize_balance(const Skeleton& skeleton, const BalanceModel& mod
   const float tighter = std::min(max_shift, max_change);
   const float edge = std::isfinite(tighter) ? 0.1f * tighter : 1e-6f;
 
+  // How far the centroids are from the blended posture's (`shift`) and from where this frame's descent
+  // started (`change`), kept up as the centroids change: the trust region's bounds read them at every step.
+  // The blended posture is where both start.
+  float shift = 0.0f, change = 0.0f;
+
   // Warm start from the previous frame's correction, or the largest fraction of it that is acceptable.
   if (params.warm_start && memory && memory->valid) {
     for (size_t k = 0; k < k_count; ++k) s.offset[k] = memory->offset[k];
@@ -545,13 +564,15 @@ BalanceResult optimize_balance(const Skeleton& skeleton, const BalanceModel& mod
       moved_kinematics(skeleton, model, pose, s.trial_local.data(), s.trial_positions, s.trial_rotations);
       moved_centroids(skeleton, model, s.trial_positions, s.trial_rotations, s.trial_centroids.data());
       const BalanceCost c = moved_cost(model, params, targets, s.trial_centroids.data(), fixed, fixed_com);
-      if (c.total < current.total && c.com_distance <= before_distance &&
-          largest_move(model, s.trial_centroids.data(), targets.style) <= max_shift) {
+      if (!(c.total < current.total && c.com_distance <= before_distance)) continue;
+      const float trial_shift = largest_move(model, s.trial_centroids.data(), targets.style);
+      if (trial_shift <= max_shift) {
         s.local.swap(s.trial_local);
         s.positions.swap(s.trial_positions);
         s.rotations.swap(s.trial_rotations);
         s.centroids.swap(s.trial_centroids);
         current = c;
+        shift = trial_shift;
         result.warm_started = true;
         break;
       }
@@ -562,13 +583,12 @@ BalanceResult optimize_balance(const Skeleton& skeleton, const BalanceModel& mod
       s.trial_centroids = s.centroids;
     }
   }
-  s.start_centroids = s.centroids;
+  s.start_centroids = s.centroids;  // `change` is 0: the descent starts here
 
   for (int iteration = 0; iteration < params.max_steps; ++iteration) {
     // Room left in the trust region: a step may move a centroid this far from where it is now (by the
     // triangle inequality this keeps both bounds). Checked first: at the edge no gradient is needed.
-    const float room = std::min(max_shift - largest_move(model, s.centroids.data(), targets.style),
-                                max_change - largest_move(model, s.centroids.data(), s.start_centroids.data()));
+    const float room = std::min(max_shift - shift, max_change - change);
     if (!(room > edge)) break;  // at the edge of the trust region: what is left is not worth a step
     const glm::vec3 com = moved_com(model, fixed_com, s.centroids.data());
     moved_gradient(skeleton, model, params, targets, com, s);
@@ -623,6 +643,7 @@ BalanceResult optimize_balance(const Skeleton& skeleton, const BalanceModel& mod
     s.rotations.swap(s.trial_rotations);
     s.centroids.swap(s.trial_centroids);
     current = trial_cost;
+    largest_moves(model, s.centroids.data(), targets.style, s.start_centroids.data(), shift, change);
     ++result.steps;
     if (improvement < params.tolerance) break;
   }
@@ -633,7 +654,7 @@ BalanceResult optimize_balance(const Skeleton& skeleton, const BalanceModel& mod
     for (size_t k = 0; k < k_count; ++k) memory->offset[k] = quat::with_positive_w(memory->offset[k]);
     memory->valid = true;
   }
-  result.largest_shift = largest_move(model, s.centroids.data(), targets.style);
+  result.largest_shift = shift;
   result.after = current;
   return result;
 }
