@@ -112,6 +112,9 @@ void run(const Options& o) {
                           {"us_per_character_frame", 1000.0 * c.ms_per_frame / c.characters},
                           {"synthesized_fraction", c.synthesized_fraction},
                           {"balanced_fraction", c.balanced_fraction},
+                          {"worst_frame_balanced_fraction", c.worst_frame_balanced_fraction},
+                          {"fit_ms_none_balanced", c.fit_ms_none_balanced},
+                          {"fit_ms_all_balanced", c.fit_ms_all_balanced},
                           {"kb_per_character", c.kb_per_character},
                           {"entry_fill_ms", c.entry_fill_ms},
                           {"huge_page_mb", c.huge_page_mb},
@@ -140,12 +143,12 @@ void run(const Options& o) {
     // only for large crowds.
     char memory[48] = "";
     if (c["characters"].get<int>() >= 1000) std::snprintf(memory, sizeof memory, "; %.0f KB each", c["kb_per_character"].get<double>());
-    std::printf("| crowd of %d (controller + full synthesis, %d threads; balance ran in %.0f%% of frames) | %.2f ms per frame (CPU %.2f per core; median %.2f, 99th percentile %.2f, worst %.2f; %.1f us per character%s) |\n",
+    std::printf("| crowd of %d (controller + full synthesis, %d threads; balance ran in %.0f%% of frames) | %.2f ms per frame (CPU %.2f per core; median %.2f, 99th percentile %.2f, worst %.2f with %.0f%% balancing; %.2f with none and %.2f with all balancing, fitted; %.1f us per character%s) |\n",
                 c["characters"].get<int>(), c["threads"].get<int>(), 100.0 * c["balanced_fraction"].get<double>(),
                 c["ms_per_frame"].get<double>(), c["cpu_ms_per_frame"].get<double>(), c["median_ms_per_frame"].get<double>(),
                 c["p99_ms_per_frame"].get<double>(), c["max_ms_per_frame"].get<double>(),
-                c["us_per_character_frame"].get<double>(),
-                memory);
+                100.0 * c["worst_frame_balanced_fraction"].get<double>(), c["fit_ms_none_balanced"].get<double>(),
+                c["fit_ms_all_balanced"].get<double>(), c["us_per_character_frame"].get<double>(), memory);
   }
   for (const auto& [name, ms] : j["graph_build_ms"].items())
     std::printf("| motion graph build, %s | %.1f ms |\n", name.c_str(), ms.get<double>());

@@ -147,6 +147,24 @@ SynthesisBenchmark benchmark_synthesis(const MotionSet& set, const Params& base,
   return b;
 }
 
+LineFit fit_line(const std::vector<double>& x, const std::vector<double>& y) {
+  const size_t n = std::min(x.size(), y.size());
+  if (n == 0) return {};
+  double mean_x = 0, mean_y = 0;
+  for (size_t i = 0; i < n; ++i) mean_x += x[i], mean_y += y[i];
+  mean_x /= static_cast<double>(n);
+  mean_y /= static_cast<double>(n);
+  double sxx = 0, sxy = 0;
+  for (size_t i = 0; i < n; ++i) {
+    sxx += (x[i] - mean_x) * (x[i] - mean_x);
+    sxy += (x[i] - mean_x) * (y[i] - mean_y);
+  }
+  LineFit fit;
+  fit.b = sxx > 0 ? sxy / sxx : 0.0;
+  fit.a = mean_y - fit.b * mean_x;
+  return fit;
+}
+
 CrowdBenchmark benchmark_crowd(const Scenario& scenario, std::shared_ptr<const WorldAssets> assets, int characters,
                                int threads, int frames, int warmup, std::uint64_t seed) {
   threads = std::max(1, std::min(threads, characters));
@@ -203,14 +221,21 @@ CrowdBenchmark benchmark_crowd(const Scenario& scenario, std::shared_ptr<const W
   const std::function<void(size_t, size_t, int)> step_counted = [&](size_t lo, size_t hi, int b) { step_block(lo, hi, b, true); };
   const size_t chunk = FrameWorkers::chunk_for(worlds.size(), threads);
   for (int f = 0; f < warmup; ++f) workers.run_chunks(worlds.size(), chunk, step_uncounted);
-  std::vector<double> frame_ms;
+  std::vector<double> frame_ms, frame_balanced;  // per frame: its time, the share of characters balanced
   frame_ms.reserve(static_cast<size_t>(std::max(frames, 0)));
+  frame_balanced.reserve(static_cast<size_t>(std::max(frames, 0)));
+  long balanced_so_far = 0;
   const double cpu0 = cpu_ms(CLOCK_PROCESS_CPUTIME_ID);
   for (int f = 0; f < frames; ++f) {
     const auto t0 = Clock::now();
     workers.run_chunks(worlds.size(), chunk, step_counted);
     frame_ms.push_back(ms_since(t0));
+    const long balanced_now = std::accumulate(balanced.begin(), balanced.end(), 0L);
+    frame_balanced.push_back(static_cast<double>(balanced_now - balanced_so_far) / characters);
+    balanced_so_far = balanced_now;
   }
+  const LineFit fit = fit_line(frame_balanced, frame_ms);
+  const size_t slowest = static_cast<size_t>(std::max_element(frame_ms.begin(), frame_ms.end()) - frame_ms.begin());
   const double total = std::accumulate(frame_ms.begin(), frame_ms.end(), 0.0);
   std::sort(frame_ms.begin(), frame_ms.end());
   // Nearest rank: the smallest frame time that at least q of the frames do not exceed.
@@ -233,6 +258,9 @@ CrowdBenchmark benchmark_crowd(const Scenario& scenario, std::shared_ptr<const W
   const double character_frames = static_cast<double>(characters) * frames;
   b.synthesized_fraction = frames > 0 ? static_cast<double>(all) / character_frames : 0.0;
   b.balanced_fraction = frames > 0 ? static_cast<double>(optimized) / character_frames : 0.0;
+  b.worst_frame_balanced_fraction = frames > 0 ? frame_balanced[slowest] : 0.0;
+  b.fit_ms_none_balanced = fit.a;
+  b.fit_ms_all_balanced = fit.a + fit.b;
   b.entry_fill_ms = fill_ms;
   b.huge_page_mb = static_cast<double>(huge_page_kb()) / 1024.0;
   b.huge_page_ms = huge_ms;

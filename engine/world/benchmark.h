@@ -70,6 +70,13 @@ struct CrowdBenchmark {
   double cpu_ms_per_frame = 0;
   double synthesized_fraction = 0;    // character-frames that went through Synthesizer::step
   double balanced_fraction = 0;       // ... in which the balance optimizer ran (alpha >= 0.3)
+  // Where the slow frames come from: a frame costs more the more of its characters the optimizer runs for,
+  // and that share grows as the crowd closes in on its balls (from about a tenth to nine tenths over the
+  // default 600 frames). The share in the slowest frame, and the least-squares line of frame time against
+  // the share, read at no character and at every character balancing: the second is what a frame costs
+  // once the whole crowd prepares.
+  double worst_frame_balanced_fraction = 0;
+  double fit_ms_none_balanced = 0, fit_ms_all_balanced = 0;
   double kb_per_character = 0;        // resident memory added per character when the crowd was built
   double entry_fill_ms = 0;           // fill_entry_frames before the first frame (once per graph: 0 after)
   double huge_page_mb = 0;            // memory on 2 MB pages once the crowd was built (huge_pages.h)
@@ -79,6 +86,13 @@ struct CrowdBenchmark {
 // random start (seeded) within 2 m of the scenario's start, facing a random direction, its first object
 // (the ball) and its goal moved to a random spot 4-8 m away; launches off, so that every frame is
 // synthesized: the characters turn, approach and prepare. Steps them `frames` frames after `warmup`.
+// The least-squares line y = a + b x through the points (x[i], y[i]); a flat line through the mean of y
+// when the x do not vary (or there are none: a = b = 0).
+struct LineFit {
+  double a = 0, b = 0;
+};
+LineFit fit_line(const std::vector<double>& x, const std::vector<double>& y);
+
 CrowdBenchmark benchmark_crowd(const Scenario& scenario, std::shared_ptr<const WorldAssets> assets, int characters,
                                int threads, int frames, int warmup, std::uint64_t seed);
 

@@ -40,7 +40,29 @@ TEST_CASE("the crowd benchmark steps every character of every world, all synthes
   CHECK(c.median_ms_per_frame > 0.0);
   CHECK(c.median_ms_per_frame <= c.p99_ms_per_frame);
   CHECK(c.p99_ms_per_frame <= c.max_ms_per_frame);
+  // The line of frame time against the share balancing passes through the means: read at the run's mean
+  // share it gives the mean frame.
+  CHECK(c.fit_ms_none_balanced + (c.fit_ms_all_balanced - c.fit_ms_none_balanced) * c.balanced_fraction ==
+        doctest::Approx(c.ms_per_frame).epsilon(1e-9));
+  CHECK(c.worst_frame_balanced_fraction >= 0.0);
+  CHECK(c.worst_frame_balanced_fraction <= 1.0);
   CHECK(benchmark_crowd(s, assets, 1, 2, 3, 0, 3).threads == 1);  // never more threads than characters
+}
+
+TEST_CASE("the frame-time line is the least-squares fit, flat where the share does not vary") {
+  // Points on y = 2 + 3 x come back exactly; noise symmetric about that line leaves it where it is.
+  const LineFit exact = fit_line({0.0, 0.5, 1.0}, {2.0, 3.5, 5.0});
+  CHECK(exact.a == doctest::Approx(2.0));
+  CHECK(exact.b == doctest::Approx(3.0));
+  const LineFit noisy = fit_line({0.0, 0.0, 1.0, 1.0}, {1.9, 2.1, 4.9, 5.1});
+  CHECK(noisy.a == doctest::Approx(2.0));
+  CHECK(noisy.b == doctest::Approx(3.0));
+  const LineFit flat = fit_line({0.4, 0.4}, {1.0, 3.0});
+  CHECK(flat.a == doctest::Approx(2.0));
+  CHECK(flat.b == 0.0);
+  const LineFit none = fit_line({}, {});
+  CHECK(none.a == 0.0);
+  CHECK(none.b == 0.0);
 }
 
 TEST_CASE("the SARSA benchmark trains the paper's 19,200 states for the steps asked") {
