@@ -59,6 +59,13 @@ struct SynthesisBenchmark {
 SynthesisBenchmark benchmark_synthesis(const MotionSet& set, const Params& params, bool balance, int characters,
                                        int frames);
 
+// The least-squares line y = a + b x through the points (x[i], y[i]); a flat line through the mean of y
+// when the x do not vary (or there are none: a = b = 0).
+struct LineFit {
+  double a = 0, b = 0;
+};
+LineFit fit_line(const std::vector<double>& x, const std::vector<double>& y);
+
 struct CrowdBenchmark {
   int characters = 0, threads = 0, frames = 0;
   double ms_per_frame = 0;            // mean wall clock per frame
@@ -86,13 +93,6 @@ struct CrowdBenchmark {
 // random start (seeded) within 2 m of the scenario's start, facing a random direction, its first object
 // (the ball) and its goal moved to a random spot 4-8 m away; launches off, so that every frame is
 // synthesized: the characters turn, approach and prepare. Steps them `frames` frames after `warmup`.
-// The least-squares line y = a + b x through the points (x[i], y[i]); a flat line through the mean of y
-// when the x do not vary (or there are none: a = b = 0).
-struct LineFit {
-  double a = 0, b = 0;
-};
-LineFit fit_line(const std::vector<double>& x, const std::vector<double>& y);
-
 CrowdBenchmark benchmark_crowd(const Scenario& scenario, std::shared_ptr<const WorldAssets> assets, int characters,
                                int threads, int frames, int warmup, std::uint64_t seed);
 
