@@ -14,8 +14,13 @@ namespace {
 
 static_assert(sizeof(glm::quat) == 4 * sizeof(float), "a quaternion is four packed floats");
 
-constexpr int kMaxTerms = 40;           // x = 1 needs 28 for the last term to fall below kSmallestTerm
-constexpr float kSmallestTerm = 1e-8f;
+constexpr int kMaxTerms = 40;  // x = 1 needs at most 22 for the last term to fall below kSmallestTerm
+// A sum of the series lies in [1, pi/2] (its first term is 1, the others positive, and t sum_i is
+// sin(t theta) / sin theta <= theta / sin theta <= pi/2 on the shorter arc), where a unit in the last place
+// is 2^-23. A term below half of that, 2^-24, rounds away when added, and every later term is smaller still
+// (each is less than half the one before): the loop stops there, and the sums are those of the whole series
+// summed term by term, to the bit.
+constexpr float kSmallestTerm = 0x1p-24f;
 
 // The series' constants per term i: i^2 and 1 / (i (2i + 1)).
 struct SeriesTable {
@@ -111,9 +116,9 @@ void slerp_four(const glm::quat* qa, const glm::quat* qb, __m128 t, glm::quat* o
   const __m128 f0 = _mm_xor_ps(b0, flip), f1 = _mm_xor_ps(b1, flip), f2 = _mm_xor_ps(b2, flip), f3 = _mm_xor_ps(b3, flip);
   d = _mm_xor_ps(d, flip);
   // A lane that takes a or b as given needs no series: its x is taken as 0, so its terms vanish and do
-  // not keep the loop going. The other lanes' sums are the same to the bit: the loop only ever ran on past
-  // a lane once its terms were below kSmallestTerm, and adding less than half a unit in the last place to
-  // a sum in [1, 2) leaves it as it is.
+  // not keep the loop going. The other lanes' sums are the same to the bit: the loop only ever runs on past
+  // a lane once its terms are below kSmallestTerm, half a unit in the last place of its sum, which adding
+  // them leaves as it is.
   const __m128 x = _mm_andnot_ps(_mm_or_ps(at_a, at_b), _mm_max_ps(zero, _mm_sub_ps(one, d)));
   const __m128 tc = _mm_min_ps(_mm_max_ps(t, zero), one);
   const __m128 s = _mm_sub_ps(one, tc);
