@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <limits>
 #include <stdexcept>
 
 #include "engine/motion/quaternion_ops.h"
@@ -117,6 +118,37 @@ BodyVolumes::BodyVolumes(const Skeleton& skeleton) {
   const Joint& head = skeleton.joints[static_cast<size_t>(head_)];
   const glm::vec3 up = head.has_end_site && glm::length(head.end_site) > 1e-4f ? glm::normalize(head.end_site) : glm::vec3(0, 1, 0);
   capsules_.push_back({head_, -1, up, kHeadRadius, BodyPart::Head, head.name});
+
+  std::vector<float> reach(static_cast<size_t>(skeleton.size()), -1.0f);
+  const auto reaches = [&](int joint, float r) { reach[static_cast<size_t>(joint)] = std::max(reach[static_cast<size_t>(joint)], r); };
+  for (const BodyCapsule& c : capsules_) {
+    const float end = glm::length(c.local_end);
+    if (c.end_joint >= 0) {
+      reaches(c.joint, c.radius);
+      reaches(c.end_joint, c.radius);
+    } else if (c.part != BodyPart::Head || c.joint != head_) {
+      reaches(c.joint, end + c.radius);
+    } else {
+      reaches(c.joint, end * (kHeadCentreAbove + kHeadHalfLength) + c.radius);
+    }
+  }
+  for (int j = 0; j < skeleton.size(); ++j)
+    if (reach[static_cast<size_t>(j)] >= 0.0f) bound_points_.push_back({j, reach[static_cast<size_t>(j)]});
+}
+
+void BodyVolumes::floor_box_bound(const std::vector<glm::vec3>& p, glm::vec2& low, glm::vec2& high) const {
+  glm::vec2 lo(std::numeric_limits<float>::infinity()), hi(-std::numeric_limits<float>::infinity());
+  for (const BoundPoint& b : bound_points_) {
+    const glm::vec3& x = p[static_cast<size_t>(b.joint)];
+    lo = glm::min(lo, glm::vec2(x.x - b.reach, x.z - b.reach));
+    hi = glm::max(hi, glm::vec2(x.x + b.reach, x.z + b.reach));
+  }
+  // Grown by a millimetre and a millionth of the coordinates besides: more than the rounding of a placed
+  // capsule's end (a unit quaternion's rotation of the End Site, added to the joint) anywhere a body can be.
+  const glm::vec2 far = glm::max(glm::abs(lo), glm::abs(hi));
+  const float margin = 1e-3f + 1e-6f * std::max(far.x, far.y);
+  low = lo - margin;
+  high = hi + margin;
 }
 
 void BodyVolumes::place(const std::vector<glm::vec3>& p, const std::vector<glm::quat>& q, std::vector<PlacedCapsule>& out) const {

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include <glm/gtc/quaternion.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "engine/motion/body_map.h"
@@ -52,10 +53,21 @@ class BodyVolumes {
   // The capsules of a pose from its forward kinematics (world joint positions and rotations).
   void place(const std::vector<glm::vec3>& positions, const std::vector<glm::quat>& rotations,
              std::vector<PlacedCapsule>& out) const;
+  // A box on the floor (x, z) that holds every capsule of the pose, from the joint positions alone: each
+  // joint grown by the farthest any of its capsules reaches from it (its radius, and the End Site's length
+  // or the head's extent for a capsule that ends in the joint's own frame). Never smaller than the placed
+  // capsules' box, and a fraction of the cost of placing them: a body that this box keeps clear of
+  // something is clear of it.
+  void floor_box_bound(const std::vector<glm::vec3>& positions, glm::vec2& low, glm::vec2& high) const;
 
  private:
   int head_ = 0;
   std::vector<BodyCapsule> capsules_;
+  struct BoundPoint {
+    int joint = -1;
+    float reach = 0.0f;  // m: how far from the joint its capsules reach
+  };
+  std::vector<BoundPoint> bound_points_;  // every joint a capsule starts or ends at
 };
 
 // The radius of the bone that starts at a joint of this name (any case), 0 for eyes and jaw (not drawn).

@@ -150,19 +150,27 @@ void World::keep_clear_of_obstacles(int index) {
     const glm::vec2 at = floor_xz(o.position);
     const float object_reach = 0.5f * glm::length(glm::vec2(o.spec.size.x, o.spec.size.z)) + kHurdleFootLength;
     if (glm::length(at - c.position) > object_reach + kBodyReach) continue;
-    if (!placed) {
-      place_body(index, body_low, body_high);
-      placed = true;
-    }
-    // The object within a circle about its middle: the body's floor box farther from that middle is clear.
-    if (glm::length(glm::clamp(at, body_low, body_high) - at) > object_reach) continue;
-    // A ball is a sphere about the vertical through its middle: a body whose floor box (capsule radii
+    // The object within a circle about its middle: a body whose floor box is farther from that middle is
+    // clear. A ball is a sphere about the vertical through its middle: a body whose floor box (capsule radii
     // included, moved by the push so far) stays farther from that line than the radius and kSurelyApart is
     // clear of it, as depth_at would find capsule by capsule (each depth is 0 for a capsule any distance
     // out). A character standing at its ball is told apart here on most ticks.
-    if (ball && glm::length(glm::clamp(at, body_low + push, body_high + push) - at) > ball_floor_reach(solids_[k]) + kSurelyApart) {
-      continue;
+    const auto clear_by_box = [&](glm::vec2 low, glm::vec2 high) {
+      if (glm::length(glm::clamp(at, low, high) - at) > object_reach) return true;
+      return ball && glm::length(glm::clamp(at, low + push, high + push) - at) > ball_floor_reach(solids_[k]) + kSurelyApart;
+    };
+    if (!placed) {
+      // The joints' bound first (a box holding the capsules' box, so the nearest point of the two is no
+      // nearer in this one): clear by it, the body is clear by its capsules, which need not be placed.
+      if (rt.kinematics_of_pose) {
+        glm::vec2 bound_low, bound_high;
+        volumes_->floor_box_bound(rt.scratch.positions, bound_low, bound_high);
+        if (clear_by_box(bound_low, bound_high)) continue;
+      }
+      place_body(index, body_low, body_high);
+      placed = true;
     }
+    if (clear_by_box(body_low, body_high)) continue;
     glm::vec2 n = forward_of(o.spec.heading);
     if (ball && glm::length(c.position - at) > 1e-4f) n = glm::normalize(c.position - at);  // away from it
     if (glm::dot(c.position - at, n) < 0.0f) n = -n;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "engine/motion/body_volumes.h"
+#include "engine/motion/bvh.h"
 #include "engine/motion/kinematics.h"
 #include "engine/util/error.h"
 #include "engine/world/clearance.h"
@@ -180,6 +181,52 @@ TEST_CASE("body volumes: a capsule per bone with the body map's parts, and the h
   CHECK(head_top > others_top);
   CHECK(head_top > 1.5f);
   CHECK(head_top < 2.0f);
+}
+
+TEST_CASE("body volumes: the joints' floor bound holds every placed capsule, in any posture, anywhere") {
+  // Our skeleton and both motion-capture skeletons (End Sites, a head with and without one, fingers),
+  // every joint turned at random, the body up to 5 km from the origin.
+  std::vector<std::shared_ptr<const Skeleton>> skeletons = {clearance_test_assets()->set->skeleton};
+  BvhReadOptions cm;
+  cm.unit_scale = 0.01f;
+  skeletons.push_back(read_bvh(test::mocap() + "/daz43/walk_02_01.bvh", cm).skeleton);
+  BvhReadOptions cmu;
+  cmu.unit_scale = 0.0254f / 0.45f;
+  skeletons.push_back(read_bvh(test::mocap() + "/cmu31/walk_69_01.bvh", cmu).skeleton);
+  std::mt19937 rng(5);
+  std::normal_distribution<float> gauss(0.0f, 1.0f);
+  std::uniform_real_distribution<float> place(-5000.0f, 5000.0f);
+  for (const auto& skeleton : skeletons) {
+    const BodyVolumes volumes(*skeleton);
+    float widest_slack = 0.0f;
+    for (int trial = 0; trial < 400; ++trial) {
+      Pose pose;
+      pose.rotations.resize(static_cast<size_t>(skeleton->size()));
+      for (glm::quat& q : pose.rotations) q = glm::normalize(glm::quat(gauss(rng), gauss(rng), gauss(rng), gauss(rng)));
+      const float far = trial < 100 ? 0.0f : trial < 300 ? 0.01f : 1.0f;  // at the origin, 50 m out, 5 km out
+      pose.root_position = glm::vec3(far * place(rng), 1.0f, far * place(rng));
+      std::vector<glm::vec3> p;
+      std::vector<glm::quat> q;
+      forward_kinematics(*skeleton, pose, p, &q);
+      std::vector<PlacedCapsule> placed;
+      volumes.place(p, q, placed);
+      glm::vec2 low, high;
+      volumes.floor_box_bound(p, low, high);
+      glm::vec2 exact_low(1e30f), exact_high(-1e30f);
+      for (const PlacedCapsule& c : placed) {
+        exact_low = glm::min(exact_low, glm::vec2(std::min(c.a.x, c.b.x), std::min(c.a.z, c.b.z)) - c.radius);
+        exact_high = glm::max(exact_high, glm::vec2(std::max(c.a.x, c.b.x), std::max(c.a.z, c.b.z)) + c.radius);
+      }
+      REQUIRE(low.x <= exact_low.x);
+      REQUIRE(low.y <= exact_low.y);
+      REQUIRE(high.x >= exact_high.x);
+      REQUIRE(high.y >= exact_high.y);
+      if (far == 0.0f) widest_slack = std::max({widest_slack, exact_low.x - low.x, exact_low.y - low.y, high.x - exact_high.x, high.y - exact_high.y});
+    }
+    // Looser than the capsules by at most a hand's or a head's length: close enough to tell a body
+    // standing at a ball apart from it.
+    CHECK(widest_slack < 0.25f);
+  }
 }
 
 TEST_CASE("clearance of a body standing in a bar: the penetration, the part and the object named") {
