@@ -7,9 +7,9 @@
 //   sin(t theta) / sin theta = t * sum_i u_i(t) x^i,   u_0 = 1,   u_i = u_(i-1) (i^2 - t^2) / (i (2i + 1)),
 // (a hypergeometric series in (1 - cos theta) / 2). On the shorter arc 0 <= x <= 1 and successive terms
 // shrink by about x / 2, so it converges for every pair; terms are added until the last one is below 2^-24
-// (half a float's resolution at the sum, so the terms left out would not change it). Between two frames of a clip (theta of a degree or two) that is two or three
-// terms, where the trigonometric form costs an acos and a sine or two per joint; at the largest angle
-// (a half turn, x = 1) it is at most 22.
+// (half a float's resolution at the sum, so the terms left out would not change it). Between two frames of
+// a clip (theta of a degree or two) that is two or three terms, where the trigonometric form costs an acos
+// and a sine or two per joint; at the largest angle (a half turn, x = 1) it is at most 22.
 //
 // The results are normalized. They agree with the trigonometric slerp to float precision (the test
 // "slerp: the series ..." in tests/motion/slerp_test.cpp). The SSE2 and the scalar path do the same

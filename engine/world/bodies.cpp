@@ -160,8 +160,8 @@ void World::keep_clear_of_obstacles(int index) {
       return ball && glm::length(glm::clamp(at, low + push, high + push) - at) > ball_floor_reach(solids_[k]) + kSurelyApart;
     };
     if (!placed) {
-      // The joints' bound first (a box holding the capsules' box, so the nearest point of the two is no
-      // nearer in this one): clear by it, the body is clear by its capsules, which need not be placed.
+      // The joints' bound first: it holds the capsules' box, so the object is at least as far from that box
+      // as from this one. Clear by it, the body is clear by its capsules, which need not be placed.
       if (rt.kinematics_of_pose) {
         glm::vec2 bound_low, bound_high;
         volumes_->floor_box_bound(rt.scratch.positions, bound_low, bound_high);
