@@ -9,6 +9,9 @@ jobs="$(nproc 2>/dev/null || echo 2)"
 # code it uses. Measured one target at a time under the sanitizers: engine/world 128 s of CPU as 13 files,
 # 91 s in batches of 8, 86 s as one; the demo library 60 s in batches of 8, 50 s as one.
 unity=(-DCMAKE_UNITY_BUILD=ON -DCMAKE_UNITY_BUILD_BATCH_SIZE=0)
+# Each phase's wall-clock seconds, printed as it ends: the whole must stay within CI's 20 minutes.
+phase_start=$SECONDS
+phase_done() { echo "prep: $1 took $((SECONDS - phase_start)) s"; phase_start=$SECONDS; }
 
 # The fuzz corpora (tests/fuzz/README.md): the normal tree builds each fuzz target as a replay runner and
 # ctest runs it on every seed and regression input (label fuzz). The sanitizer tree does not: the libFuzzer
@@ -16,7 +19,9 @@ unity=(-DCMAKE_UNITY_BUILD=ON -DCMAKE_UNITY_BUILD_BATCH_SIZE=0)
 # clang and its libFuzzer runtime are installed for that run.
 export PREP_EXTRA_PACKAGES="clang-14 libclang-rt-14-dev ${PREP_EXTRA_PACKAGES:-}"
 "$here/scripts/setup.sh" "$here/build" "${unity[@]}"
+phase_done "set-up and the release build"
 (cd "$here/build" && ctest --output-on-failure -j "$jobs")
+phase_done "the release tests"
 
 echo "prep: tests again under AddressSanitizer + UndefinedBehaviorSanitizer"
 # -O1 -g1 (the level the sanitizers' documentation recommends, with line tables for their stack traces):
@@ -24,10 +29,12 @@ echo "prep: tests again under AddressSanitizer + UndefinedBehaviorSanitizer"
 # -O2 -g1, and full -g about doubled it again (measured here, one file at a time).
 "$here/scripts/setup.sh" "$here/build-asan" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
   -DPREP_SANITIZE=ON -DPREP_BUILD_BENCH=OFF -DPREP_BUILD_CLI=OFF -DPREP_FUZZ_REPLAY=OFF "${unity[@]}"
+phase_done "the sanitizer build"
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 # Tests labelled slow (a minute of the demo under stress, 50 random courses) run in the normal tree only:
 # under the sanitizers they would take over two minutes, and the shorter tests cover the same code there.
 (cd "$here/build-asan" && ctest --output-on-failure -j "$jobs" -LE slow)
+phase_done "the tests under the sanitizers"
 
 echo "prep: fuzz smoke run: every loader's libFuzzer target for 10 s under AddressSanitizer + UndefinedBehaviorSanitizer"
 # Measured on this 2-core machine: the -O0 fuzz tree takes about 1.5 minutes of CPU to build (the -O1 tree
@@ -35,3 +42,5 @@ echo "prep: fuzz smoke run: every loader's libFuzzer target for 10 s under Addre
 # took 1133 s on a clean clone.
 unset ASAN_OPTIONS UBSAN_OPTIONS  # libFuzzer sets its own
 "$here/scripts/fuzz.sh" --smoke 10
+phase_done "the fuzz build and smoke run"
+echo "prep: every test passed in $SECONDS s"
