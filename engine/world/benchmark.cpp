@@ -177,7 +177,11 @@ CrowdBenchmark benchmark_crowd(const Scenario& scenario, std::shared_ptr<const W
   for (int k = 0; k < characters; ++k) {
     Scenario s = scenario;
     ScenarioCharacter& c = s.characters[static_cast<size_t>(user)];
-    c.position += glm::vec2(4.0f * unit(rng) - 2.0f, 4.0f * unit(rng) - 2.0f);
+    // One draw per statement: a constructor's arguments are unsequenced, and compilers differ in the order
+    // they evaluate them (the same seed must give the same crowd everywhere).
+    const float dz = 4.0f * unit(rng) - 2.0f;
+    const float dx = 4.0f * unit(rng) - 2.0f;
+    c.position += glm::vec2(dx, dz);
     c.heading = 2.0f * kPi * unit(rng);
     const float angle = 2.0f * kPi * unit(rng), distance = 4.0f + 4.0f * unit(rng);
     const glm::vec2 spot = c.position + distance * glm::vec2(std::sin(angle), std::cos(angle));

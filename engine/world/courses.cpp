@@ -183,7 +183,10 @@ bool draw_course(const CourseOptions& o, Random& rng, Scenario& s) {
     if (waypoint_in[gap]) {
       at += rng.uniform(2.5f, 4.0f) * forward_of(direction);
       s.goal.push_back(at);
-      direction = wrap_angle(direction + rng.sign() * rng.uniform(25.0f, 75.0f) * kDegrees);
+      // The turn's side is drawn before its size: the two operands of one product are unsequenced, and
+      // compilers evaluate them in different orders (the same seed must give the same course everywhere).
+      const float side = rng.sign();
+      direction = wrap_angle(direction + side * rng.uniform(25.0f, 75.0f) * kDegrees);
       length = rng.uniform(3.0f, 5.0f);
     }
     at += length * forward_of(direction);

@@ -76,7 +76,11 @@ std::unique_ptr<World> Crowd::make_lane(int i) {
   ScenarioCharacter& user = s.characters[static_cast<size_t>(s.user())];
   // Along the user's heading (0 faces +z) and across it.
   const glm::vec2 along(std::sin(user.heading), std::cos(user.heading)), across(along.y, -along.x);
-  user.position += options_.start_jitter * (symmetric(rng) * along + 0.5f * symmetric(rng) * across);
+  // One draw per statement: the operands of one expression are unsequenced, and compilers differ in the
+  // order they evaluate them (the same seed must give the same crowd everywhere).
+  const float sideways = symmetric(rng);
+  const float forward = symmetric(rng);
+  user.position += options_.start_jitter * (forward * along + 0.5f * sideways * across);
   user.heading += options_.heading_jitter * symmetric(rng);
   auto world = std::make_unique<World>(s, assets_);
   world->set_auto(true);
