@@ -147,7 +147,6 @@ class DemoApp final : public WindowApp {
   int panel_frames_ = 0;
   PanelCache panel_cache_;
   static constexpr int kPanelRedrawFrames = 6;  // at most this many frames between two redraws of idle panels
-  bool camera_placed_ = false;  // reset_camera() ran for the world now running
   const World* camera_world_ = nullptr;
   glm::vec2 initial_goal_{0.0f};
   std::set<int> steer_keys_;  // the steering keys held (GLFW key codes)

@@ -197,10 +197,11 @@ TEST_CASE("The shipped joint maps name real joints of their skeletons") {
       {"cmu31.json", test::cmu31_clip("walk_69_01.bvh").skeleton}};
   for (const auto& [file, skeleton] : cases) {
     const JointMap map = load_joint_map(test::repo() + "/assets/retarget/" + file);
-    for (const auto& [theirs, mine] : map.pairs) {
+    for (const auto& pair : map.pairs) {
+      const std::string& theirs = pair.first;  // a plain reference: CAPTURE's lambda cannot capture a structured binding in C++17
       CAPTURE(theirs);
       CHECK(find_joint_loosely(*skeleton, theirs) >= 0);
-      CHECK(ours->find(mine) >= 0);
+      CHECK(ours->find(pair.second) >= 0);
     }
   }
   // Mixamo names carry a namespace; any prefix matches ours.

@@ -99,7 +99,9 @@ void check_panels(DemoRun& run) {
   run.app->frame(0.0f);  // dt 0: the world does not move
   const render::Image bare = run.context.read_pixels();
   run.app->view.show_panels = true;
-  for (const auto& [name, r] : rects) {
+  for (const auto& entry : rects) {
+    const std::string& name = entry.first;  // not a structured binding: CAPTURE's lambda captures it
+    const glm::vec4& r = entry.second;
     CAPTURE(name);
     CHECK(r.z > 200.0f);
     CHECK(r.w > 100.0f);

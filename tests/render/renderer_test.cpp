@@ -112,7 +112,9 @@ TEST_CASE("headless demo frame: character at its projected root and head, floor,
   const auto rects = app.panel_rects();
   REQUIRE(rects.count("Clip player") == 1);
   REQUIRE(rects.count("Timings") == 1);
-  for (const auto& [name, r] : rects) {
+  for (const auto& entry : rects) {
+    const std::string& name = entry.first;  // not a structured binding: CAPTURE's lambda captures it
+    const glm::vec4& r = entry.second;
     CAPTURE(name);
     CHECK(r.z > 100.0f);
     CHECK(r.w > 50.0f);

@@ -14,8 +14,16 @@ using namespace prep;
 
 namespace {
 
+// AddressSanitizer's allocator keeps blocks in its own mappings. GCC says it is on by a macro, clang by
+// __has_feature.
 #if defined(__SANITIZE_ADDRESS__)
-constexpr bool kSanitizerHeap = true;  // AddressSanitizer's allocator keeps blocks in its own mappings
+constexpr bool kSanitizerHeap = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+constexpr bool kSanitizerHeap = true;
+#else
+constexpr bool kSanitizerHeap = false;
+#endif
 #else
 constexpr bool kSanitizerHeap = false;
 #endif
