@@ -198,7 +198,7 @@ TEST_CASE("The shipped joint maps name real joints of their skeletons") {
   for (const auto& [file, skeleton] : cases) {
     const JointMap map = load_joint_map(test::repo() + "/assets/retarget/" + file);
     for (const auto& pair : map.pairs) {
-      const std::string& theirs = pair.first;  // a plain reference: CAPTURE's lambda cannot capture a structured binding in C++17
+      const std::string& theirs = pair.first;  // not a structured binding: CAPTURE's lambda captures it
       CAPTURE(theirs);
       CHECK(find_joint_loosely(*skeleton, theirs) >= 0);
       CHECK(ours->find(pair.second) >= 0);
