@@ -13,6 +13,13 @@ namespace prep {
 
 Player::Player(const MotionGraph& graph) : graph_(&graph) {
   if (!graph.set().clips.empty()) fps_ = graph.set().clips.front().clip.fps;
+  // Room for what a stream holds at once (forget_before keeps a few segments), and sign tables ready to
+  // fill: a stream allocates nothing as it plays, from its first switch on.
+  segments_.reserve(kHeldSegments);
+  switches_.reserve(kHeldSegments);
+  const size_t joints = graph.set().skeleton ? static_cast<size_t>(graph.set().skeleton->size()) : 0;
+  spare_signs_.resize(kSpareSignTables);
+  for (std::vector<float>& table : spare_signs_) table.reserve(joints);
 }
 
 int Player::natural_last(const Segment& s) const {
@@ -37,6 +44,7 @@ void Player::start(int node, int frame, FloorTransform place) {
   s.first = frame >= 0 ? std::min(frame, mc.clip.frame_count() - 1) : (mc.cyclic ? mc.loop_first : 0);
   s.set_place(place);
   s.last = natural_last(s);
+  recycle_signs(0, segments_.size());
   segments_.assign(1, s);
   switches_.clear();
 }
@@ -95,12 +103,24 @@ void Player::follow(int edge) {
   next.last = natural_last(next);
   // Each joint's cross-fade takes the shorter arc as it stands at the switch and keeps that arc for the
   // whole blend: choosing it anew each frame would jump to the other arc when two rotations about half
-  // a turn apart (a crawling leg against a walking one) cross the quarter-turn mark.
-  Pose a, b;
-  pose_of(cur, e.from_frame, a);
-  pose_of(next, next.first, b);
-  next.blend_sign.resize(a.rotations.size());
-  for (size_t j = 0; j < a.rotations.size(); ++j) next.blend_sign[j] = glm::dot(a.rotations[j], b.rotations[j]) < 0.0f ? -1.0f : 1.0f;
+  // a turn apart (a crawling leg against a walking one) cross the quarter-turn mark. The two frames are
+  // read where the clips hold them (pose_of's rotations: the root placed, every other joint as recorded),
+  // and the signs go into the table of a segment let go of (forget_before, start): a stream that plays on
+  // allocates nothing.
+  const std::vector<glm::quat>& a = clip_frame(cur, e.from_frame).rotations;
+  const std::vector<glm::quat>& b = clip_frame(next, next.first).rotations;
+  if (!spare_signs_.empty()) {
+    next.blend_sign = std::move(spare_signs_.back());
+    spare_signs_.pop_back();
+  }
+  const auto sign = [](float d) { return d < 0.0f ? -1.0f : 1.0f; };
+  next.blend_sign.resize(a.size());
+  for (size_t j = 1; j < a.size(); ++j) next.blend_sign[j] = sign(glm::dot(a[j], b[j]));
+  if (!a.empty()) {  // the roots as placed
+    const glm::quat root_a = glm::normalize(cur.place_rotation * a[0]);
+    const glm::quat root_b = glm::normalize(next.place_rotation * b[0]);
+    next.blend_sign[0] = sign(glm::dot(root_a, root_b));
+  }
   switches_.push_back({next.stream_first, next.blend, edge});
   segments_.push_back(std::move(next));
 }
@@ -147,9 +167,13 @@ int Player::frame_count() const {
 
 float Player::duration() const { return frame_count() > 0 ? static_cast<float>(frame_count() - 1) / fps_ : 0.0f; }
 
-void Player::pose_of(const Segment& s, int clip_frame, Pose& out) const {
+const Pose& Player::clip_frame(const Segment& s, int frame) const {
   const Clip& clip = graph_->set().clips[static_cast<size_t>(s.node)].clip;
-  out = clip.frames[static_cast<size_t>(std::clamp(clip_frame, 0, clip.frame_count() - 1))];
+  return clip.frames[static_cast<size_t>(std::clamp(frame, 0, clip.frame_count() - 1))];
+}
+
+void Player::pose_of(const Segment& s, int frame, Pose& out) const {
+  out = clip_frame(s, frame);
   out.root_position = s.placed(out.root_position);
   out.rotations[0] = glm::normalize(s.place_rotation * out.rotations[0]);
 }
@@ -161,10 +185,16 @@ size_t Player::segment_of(int frame) const {
   return it == segments_.begin() ? 0 : static_cast<size_t>(it - segments_.begin()) - 1;
 }
 
+void Player::recycle_signs(size_t from, size_t to) {
+  for (size_t i = from; i < to && spare_signs_.size() < kSpareSignTables; ++i)
+    if (segments_[i].blend_sign.capacity() > 0) spare_signs_.push_back(std::move(segments_[i].blend_sign));
+}
+
 void Player::forget_before(int frame) {
   if (segments_.size() < 3 || frame < segments_[2].stream_first) return;
   const size_t keep_from = segment_of(frame) - 1;
   const int first_kept = segments_[keep_from].stream_first;
+  recycle_signs(0, keep_from);
   segments_.erase(segments_.begin(), segments_.begin() + static_cast<std::ptrdiff_t>(keep_from));
   const auto played = std::find_if(switches_.begin(), switches_.end(), [&](const Switch& s) { return s.stream_frame >= first_kept; });
   switches_.erase(switches_.begin(), played);

@@ -93,7 +93,9 @@ class Player {
   // The edge to take from the open segment to `action`, and whether a loop wrap comes first; -1 if none.
   int choose_edge(const Segment& s, const PlayerAction& action, bool* wrap_first) const;
   void follow(int edge);
-  void pose_of(const Segment& s, int clip_frame, Pose& out) const;
+  const Pose& clip_frame(const Segment& s, int frame) const;  // the clip's own frame (clamped), not placed
+  void pose_of(const Segment& s, int frame, Pose& out) const;
+  void recycle_signs(size_t from, size_t to);  // segments [from, to)'s sign tables to spare_signs_
   size_t segment_of(int frame) const;  // the segment playing stream frame `frame` (segments_ not empty, frame >= 0)
   // sample() when stream frames i0 and i0 + 1 lie in one segment past its cross-fade, read from the clip
   // in place; false (nothing written) otherwise.
@@ -101,8 +103,13 @@ class Player {
 
   const MotionGraph* graph_;
   float fps_ = 30.0f;
+  // Room for the segments and switches a stream holds at once (forget_before keeps a few), reserved up front.
+  static constexpr size_t kHeldSegments = 8;
   std::vector<Segment> segments_;
   std::vector<Switch> switches_;
+  // Sign tables of segments let go of, for the next switches to fill: a few go round.
+  static constexpr size_t kSpareSignTables = 4;
+  std::vector<std::vector<float>> spare_signs_;
 };
 
 }  // namespace prep

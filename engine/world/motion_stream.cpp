@@ -20,7 +20,9 @@ FloorTransform place_frame(const Clip& clip, int frame, glm::vec2 position, floa
   return t;
 }
 
-MotionStream::MotionStream(const MotionGraph& graph) : graph_(&graph), player_(std::make_unique<Player>(graph)) {}
+MotionStream::MotionStream(const MotionGraph& graph) : graph_(&graph), player_(std::make_unique<Player>(graph)) {
+  pieces_.reserve(kHeldPieces);  // what a stream holds at once (forget_played): its queue never allocates
+}
 MotionStream::~MotionStream() = default;
 MotionStream::MotionStream(MotionStream&&) noexcept = default;
 MotionStream& MotionStream::operator=(MotionStream&&) noexcept = default;
