@@ -104,7 +104,7 @@ class Player {
   const MotionGraph* graph_;
   float fps_ = 30.0f;
   // Room for the segments and switches a stream holds at once (forget_before keeps a few), reserved up front.
-  static constexpr size_t kHeldSegments = 8;
+  static constexpr size_t kHeldSegments = 4;
   std::vector<Segment> segments_;
   std::vector<Switch> switches_;
   // Sign tables of segments let go of, for the next switches to fill: a few go round.

@@ -69,7 +69,7 @@ class MotionStream {
   void sample();
   void forget_played();  // lets go of the pieces and player segments behind the time playing
 
-  static constexpr size_t kHeldPieces = 8;
+  static constexpr size_t kHeldPieces = 4;
   const MotionGraph* graph_;
   std::unique_ptr<Player> player_;
   std::vector<Piece> pieces_;
