@@ -19,7 +19,7 @@ Player::Player(const MotionGraph& graph) : graph_(&graph) {
   switches_.reserve(kHeldSegments);
   const size_t joints = graph.set().skeleton ? static_cast<size_t>(graph.set().skeleton->size()) : 0;
   spare_signs_.resize(kSpareSignTables);
-  for (std::vector<float>& table : spare_signs_) table.reserve(joints);
+  for (std::vector<std::int8_t>& table : spare_signs_) table.reserve(joints);
 }
 
 int Player::natural_last(const Segment& s) const {
@@ -113,7 +113,7 @@ void Player::follow(int edge) {
     next.blend_sign = std::move(spare_signs_.back());
     spare_signs_.pop_back();
   }
-  const auto sign = [](float d) { return d < 0.0f ? -1.0f : 1.0f; };
+  const auto sign = [](float d) { return static_cast<std::int8_t>(d < 0.0f ? -1 : 1); };
   next.blend_sign.resize(a.size());
   for (size_t j = 1; j < a.size(); ++j) next.blend_sign[j] = sign(glm::dot(a[j], b[j]));
   if (!a.empty()) {  // the roots as placed
@@ -219,7 +219,7 @@ void Player::pose_at(int frame, Pose& out) const {
     const float w = x * x * (3.0f - 2.0f * x);
     out.root_position = previous.root_position + (out.root_position - previous.root_position) * w;
     for (size_t j = 0; j < out.rotations.size(); ++j)  // glm::mix: slerp along the arc the signs give
-      out.rotations[j] = glm::normalize(glm::mix(previous.rotations[j], out.rotations[j] * s.blend_sign[j], w));
+      out.rotations[j] = glm::normalize(glm::mix(previous.rotations[j], out.rotations[j] * static_cast<float>(s.blend_sign[j]), w));
   }
 }
 

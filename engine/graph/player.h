@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include "engine/graph/motion_graph.h"
@@ -78,7 +79,7 @@ class Player {
     glm::quat place_rotation{1.0f, 0.0f, 0.0f, 0.0f};
     int blend = 0;          // frames at the start cross-faded with the previous clip ...
     int blend_from = 0;     // ... whose frames blend_from, blend_from + 1, ... keep playing meanwhile
-    std::vector<float> blend_sign;  // per joint: +-1 so that each rotation's path is fixed at the switch
+    std::vector<std::int8_t> blend_sign;  // per joint: +-1 so that each rotation's path is fixed at the switch
 
     void set_place(const FloorTransform& p) {
       place = p;
@@ -109,7 +110,7 @@ class Player {
   std::vector<Switch> switches_;
   // Sign tables of segments let go of, for the next switches to fill: a few go round.
   static constexpr size_t kSpareSignTables = 4;
-  std::vector<std::vector<float>> spare_signs_;
+  std::vector<std::vector<std::int8_t>> spare_signs_;
 };
 
 }  // namespace prep
