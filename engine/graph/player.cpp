@@ -14,7 +14,7 @@ namespace prep {
 Player::Player(const MotionGraph& graph) : graph_(&graph) {
   if (!graph.set().clips.empty()) fps_ = graph.set().clips.front().clip.fps;
   // Room for what a stream holds at once (forget_before keeps a few segments), and sign tables ready to
-  // fill: a stream allocates nothing as it plays, from its first switch on.
+  // fill: a stream allocates nothing as it plays.
   segments_.reserve(kHeldSegments);
   switches_.reserve(kHeldSegments);
   const size_t joints = graph.set().skeleton ? static_cast<size_t>(graph.set().skeleton->size()) : 0;
