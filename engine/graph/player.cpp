@@ -116,11 +116,7 @@ void Player::follow(int edge) {
   const auto sign = [](float d) { return static_cast<std::int8_t>(d < 0.0f ? -1 : 1); };
   next.blend_sign.resize(a.size());
   for (size_t j = 1; j < a.size(); ++j) next.blend_sign[j] = sign(glm::dot(a[j], b[j]));
-  if (!a.empty()) {  // the roots as placed
-    const glm::quat root_a = glm::normalize(cur.place_rotation * a[0]);
-    const glm::quat root_b = glm::normalize(next.place_rotation * b[0]);
-    next.blend_sign[0] = sign(glm::dot(root_a, root_b));
-  }
+  if (!a.empty()) next.blend_sign[0] = sign(glm::dot(cur.placed(a[0]), next.placed(b[0])));  // the roots as placed
   switches_.push_back({next.stream_first, next.blend, edge});
   segments_.push_back(std::move(next));
 }
@@ -175,7 +171,7 @@ const Pose& Player::clip_frame(const Segment& s, int frame) const {
 void Player::pose_of(const Segment& s, int frame, Pose& out) const {
   out = clip_frame(s, frame);
   out.root_position = s.placed(out.root_position);
-  out.rotations[0] = glm::normalize(s.place_rotation * out.rotations[0]);
+  out.rotations[0] = s.placed(out.rotations[0]);
 }
 
 size_t Player::segment_of(int frame) const {
@@ -254,8 +250,7 @@ bool Player::sample_within_segment(int i0, float w, Pose& out) const {
   const size_t n = a.rotations.size();
   out.rotations.resize(n);
   if (n == 0) return true;
-  const glm::quat place = s.place_rotation;
-  out.rotations[0] = slerp_shorter(glm::normalize(place * a.rotations[0]), glm::normalize(place * b.rotations[0]), w);
+  out.rotations[0] = slerp_shorter(s.placed(a.rotations[0]), s.placed(b.rotations[0]), w);
   slerp_shorter(a.rotations.data() + 1, b.rotations.data() + 1, w, out.rotations.data() + 1, n - 1);
   return true;
 }

@@ -88,6 +88,7 @@ class Player {
       place_rotation = p.rotation();
     }
     glm::vec3 placed(glm::vec3 point) const { return place.apply(point, place_cos, place_sin); }
+    glm::quat placed(const glm::quat& root_rotation) const { return glm::normalize(place_rotation * root_rotation); }
   };
   int natural_last(const Segment& s) const;
   int earliest_exit(const Segment& s) const;
