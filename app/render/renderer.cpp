@@ -9,6 +9,7 @@
 #include <string>
 
 #include "app/render/culling.h"
+#include "app/render/meshes.h"
 #include "app/render/palette.h"
 #include "app/render/shader.h"
 #include "engine/world/object_solids.h"
@@ -18,44 +19,6 @@ namespace prep::render {
 using namespace prep::gl;
 
 namespace {
-
-constexpr float kPi = 3.14159265358979f;
-
-// A unit-radius capsule of zero length: rows of vertices from the bottom pole of end A to the top pole of
-// end B; the band between A's equator and B's equator is the cylinder.
-void capsule_mesh(int slices, int half_rings, std::vector<float>& vertices, std::vector<unsigned>& indices) {
-  const int rows = 2 * (half_rings + 1);
-  for (int row = 0; row < rows; ++row) {
-    const bool end_b = row > half_rings;
-    const int k = end_b ? row - half_rings - 1 : row;
-    const float latitude = end_b ? 0.5f * kPi * k / half_rings : -0.5f * kPi + 0.5f * kPi * k / half_rings;
-    for (int s = 0; s <= slices; ++s) {
-      const float longitude = 2.0f * kPi * s / slices;
-      vertices.insert(vertices.end(), {std::cos(latitude) * std::cos(longitude), std::sin(latitude),
-                                       std::cos(latitude) * std::sin(longitude), end_b ? 1.0f : 0.0f});
-    }
-  }
-  for (int row = 0; row + 1 < rows; ++row)
-    for (int s = 0; s < slices; ++s) {
-      const unsigned a = row * (slices + 1) + s, b = a + slices + 1;
-      indices.insert(indices.end(), {a, b, a + 1, a + 1, b, b + 1});
-    }
-}
-
-void cube_mesh(std::vector<float>& vertices, std::vector<unsigned>& indices) {
-  const glm::vec3 normals[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-  for (const glm::vec3& n : normals) {
-    const glm::vec3 u = std::fabs(n.y) > 0.5f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
-    const glm::vec3 v = glm::cross(n, u);
-    const unsigned base = static_cast<unsigned>(vertices.size() / 6);
-    for (int corner = 0; corner < 4; ++corner) {
-      const float su = (corner == 1 || corner == 2) ? 0.5f : -0.5f, sv = corner >= 2 ? 0.5f : -0.5f;
-      const glm::vec3 p = 0.5f * n + su * u + sv * v;
-      vertices.insert(vertices.end(), {p.x, p.y, p.z, n.x, n.y, n.z});
-    }
-    indices.insert(indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
-  }
-}
 
 glm::mat4 box_model(const glm::vec3& origin, float heading, const glm::vec3& local_centre, const glm::vec3& extents) {
   glm::mat4 m = glm::translate(glm::mat4(1.0f), origin);
@@ -313,10 +276,10 @@ Renderer::Renderer(const RenderSettings& settings) : settings_(settings) {
     bind_float_attribute(1, 1, 4 * sizeof(float), 3 * sizeof(float), false);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, capsule_ibo_);
     bind_instances(flagged_instances_);
-    // Light bodies: a capsule of 6 slices and one ring per end (36 triangles against 560).
+    // Light bodies: a capsule of 6 slices and one ring per end (24 triangles against 560).
     light_index_count_ = upload_capsule_mesh(6, 1, light_vao_, light_vbo_, light_ibo_);
     bind_instances(light_instances_);
-    // Light bodies far away: 4 slices (24 triangles).
+    // Light bodies far away: 4 slices (16 triangles).
     distant_index_count_ = upload_capsule_mesh(4, 1, distant_vao_, distant_vbo_, distant_ibo_);
     bind_instances(distant_instances_);
   }

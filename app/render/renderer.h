@@ -35,8 +35,8 @@ struct RenderSettings {
   glm::vec3 light_dir{0.45f, 1.0f, 0.35f};  // toward the light (normalized by the renderer)
   // m from the eye: the fog starts, and is full (the sky's colour: nothing beyond is drawn).
   float fog_start = 30.0f, fog_end = 90.0f;
-  // m from the eye: light bodies' capsules wholly beyond are drawn with 4 sides instead of 6 (24 triangles
-  // instead of 36); a bone there is at most a few pixels wide.
+  // m from the eye: light bodies' capsules wholly beyond are drawn with 4 sides instead of 6 (16 triangles
+  // instead of 24); a bone there is at most a few pixels wide.
   float distant_capsules_from = 25.0f;
   // Leave out what a pass cannot show (culling.h); false draws every instance, for comparison.
   bool cull = true;
