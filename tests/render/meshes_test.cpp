@@ -46,7 +46,8 @@ void check_closed_and_outward(const Surface& s, glm::vec3 axis_a, glm::vec3 axis
 }  // namespace
 
 TEST_CASE("the capsule mesh is closed, faces out, and has one vertex per pole and none twice") {
-  for (const auto& [slices, half_rings] : std::vector<std::pair<int, int>>{{4, 1}, {6, 1}, {20, 7}, {5, 3}}) {
+  for (const std::pair<int, int>& size : std::vector<std::pair<int, int>>{{4, 1}, {6, 1}, {20, 7}, {5, 3}}) {
+    const int slices = size.first, half_rings = size.second;  // plain variables: CAPTURE's lambda takes them
     CAPTURE(slices);
     CAPTURE(half_rings);
     std::vector<float> v;
