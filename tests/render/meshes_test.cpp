@@ -19,8 +19,9 @@ struct Surface {
   std::vector<unsigned> indices;
 };
 
-// Every triangle has area and faces away from `inside_of` (the nearest point of the segment it is built
-// around); every directed edge is used once and its reverse once: closed, consistently wound.
+// Every triangle has area and faces away from the nearest point of the axis from `axis_a` to `axis_b` (the
+// segment the surface is built around); every directed edge is used once and its reverse once: closed,
+// consistently wound.
 void check_closed_and_outward(const Surface& s, glm::vec3 axis_a, glm::vec3 axis_b) {
   REQUIRE(s.indices.size() % 3 == 0);
   std::map<std::pair<unsigned, unsigned>, int> directed;
