@@ -108,17 +108,32 @@ void World::keep_apart() {
 
 // A punched opponent stops fighting and steps aside, out of the way its striker is going (to the side it
 // already stands on, and a little back), then stands: left where it was hit, it would stand in the user's
-// way, and a user walking on would be pressed between it and the next opponent.
+// way, and a user walking on would be pressed between it and the next opponent. The way is the one the
+// striker faces, unless the spot aside from it would stand on a waypoint or goal the striker has still to
+// reach: a striker faces whom it punches, not its route, and bodies keep apart, so it could never come near
+// enough to reach that point and would circle it. Then the way is toward the striker's next point.
 void World::defeat(int opponent, int striker) {
   WorldCharacter& o = characters_[static_cast<size_t>(opponent)];
   const WorldCharacter& s = characters_[static_cast<size_t>(striker)];
   o.defeated = true;
-  const glm::vec2 way = forward_of(s.heading);
-  glm::vec2 away = o.position - s.position;
-  away = glm::length(away) > 1e-4f ? glm::normalize(away) : way;
-  const glm::vec2 left = floor_plane::left_of(s.heading);
-  const glm::vec2 side = glm::dot(o.position - s.position, left) >= 0.0f ? left : -left;
-  o.goal = {o.position + kStepAside * glm::normalize(side + 0.5f * away)};
+  const auto aside_from = [&](glm::vec2 way) {
+    glm::vec2 away = o.position - s.position;
+    away = glm::length(away) > 1e-4f ? glm::normalize(away) : way;
+    const glm::vec2 left(way.y, -way.x);  // floor_plane::left_of a heading facing `way`
+    const glm::vec2 side = glm::dot(o.position - s.position, left) >= 0.0f ? left : -left;
+    return o.position + kStepAside * glm::normalize(side + 0.5f * away);
+  };
+  // Nearer than this to a point the striker must reach, the opponent would keep it out of that point's radius.
+  const float blocking = kPersonalSpace + params_.reward.goal_radius;
+  const auto blocks_a_goal = [&](glm::vec2 spot) {
+    for (const glm::vec2& g : s.goal)
+      if (glm::length(g - spot) < blocking) return true;
+    return false;
+  };
+  glm::vec2 spot = aside_from(forward_of(s.heading));
+  const glm::vec2 to_next = s.goal.empty() ? glm::vec2(0.0f) : s.goal.front() - s.position;
+  if (blocks_a_goal(spot) && glm::length(to_next) > 1e-4f) spot = aside_from(glm::normalize(to_next));
+  o.goal = {spot};
 }
 
 // Bodies never pass through obstacles. A body that has gone into an obstacle's solids (a trailing leg swung

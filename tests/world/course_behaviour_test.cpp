@@ -304,3 +304,36 @@ TEST_CASE("the next obstacle close beyond the crawl: its end clear of the hands,
     CHECK(e.clearance.object_frames == 0);
   }
 }
+
+TEST_CASE("two opponents beaten before a waypoint: neither steps aside onto it, and the goal is reached") {
+  // Random course 10 of seed 99: the user turns toward the opponents coming at it 1 m short of its first
+  // waypoint, which it has not passed, and beats both. A beaten opponent stepped aside from the way the user
+  // faced (toward whom it punched), and the first one stood 0.4 m from that waypoint: bodies keep apart, so
+  // the user circled it for 40 s and never reached it. Stepping aside from the way to the user's next
+  // waypoint, they leave it free.
+  CourseOptions o;
+  o.seed = 99;
+  o.actions = actions_of(*builtin_assets());
+  o.reach = reaches_of(*builtin_assets());
+  o.heights = heights_of(*builtin_assets());
+  const Scenario course = make_courses(o, 11)[10];
+  REQUIRE(course.objects.size() == 2);
+  REQUIRE(course.goal.size() == 3);
+  World world(course, builtin_assets());
+  world.set_auto(true);
+  float nearest_to_waypoint = INFINITY;  // a defeated opponent's root from the user's current waypoint
+  world.run_until_done(60.0f, 1.0f, [&](const World& w) {
+    const WorldCharacter& user = w.characters()[0];
+    if (user.goal.size() < 2) return;  // no waypoint left: the goal itself
+    for (const WorldCharacter& c : w.characters()) {
+      if (c.control == Control::Opponent && c.defeated)
+        nearest_to_waypoint = std::min(nearest_to_waypoint, glm::length(c.position - user.goal.front()));
+    }
+  });
+  CHECK(world.goal_reached());
+  // Farther than a body's width plus the goal radius: the user can stand on the waypoint beside it.
+  CHECK(nearest_to_waypoint > 1.0f);
+  const CourseEvaluation e = evaluate_courses({course}, builtin_assets(), 1)[0];
+  CHECK(e.reached_goal);
+  CHECK(e.circling_seconds == 0.0f);
+}
