@@ -28,15 +28,17 @@ bool inside_turning_circle(glm::vec2 position, float heading, glm::vec2 goal, fl
   return std::fabs(b) > 0.5f * kPi && d < 2.0f * turning_radius;        // behind, within a U-turn's width
 }
 
-TightTurn tight_turn(glm::vec2 position, float heading, glm::vec2 goal, float turning_radius, float max_rate) {
+TightTurn tight_turn(glm::vec2 position, float heading, glm::vec2 goal, float turning_radius, float max_rate,
+                     bool turn_back) {
   TightTurn t;
   if (max_rate <= 0.0f) return t;
   const float b = bearing_to(position, heading, goal);
   const bool inside = inside_turning_circle(position, heading, goal, turning_radius);
   const bool near = glm::length(goal - position) < kNearGoal && std::fabs(b) > kNearBearing;
-  if (!inside && !near) return t;
+  const bool behind = turn_back && std::fabs(b) > kTurnBack;
+  if (!inside && !near && !behind) return t;
   t.rate = std::clamp(b / kTightTurnTime, -max_rate, max_rate);
-  if (inside) t.stride = std::max(kTightStride, std::cos(std::min(std::fabs(b), 0.5f * kPi)));
+  if (inside || behind) t.stride = std::max(kTightStride, std::cos(std::min(std::fabs(b), 0.5f * kPi)));
   return t;
 }
 
@@ -49,9 +51,8 @@ float squaring_rate(float heading, float crossing_heading, float max_rate) {
 }
 
 bool passed_waypoint(glm::vec2 position, float heading, glm::vec2 waypoint, float pass_radius) {
-  const glm::vec2 d = waypoint - position;
-  if (glm::length(d) > pass_radius) return false;
-  return glm::dot(d, glm::vec2(std::sin(heading), std::cos(heading))) <= 0.0f;
+  if (glm::length(waypoint - position) > pass_radius) return false;
+  return std::fabs(bearing_to(position, heading, waypoint)) >= kPassedBearing;
 }
 
 }  // namespace prep

@@ -19,6 +19,14 @@
 // at distance d and bearing b lies on a circle of radius d / (2 sin b). At the cap of 180 deg/s, applied in
 // single support (about 60% of a walk), and a third of 1.4 m/s, the circle is 0.25 m: goals from 0.5 m out
 // at any bearing are reached.
+// A goal behind the character (more than kTurnBack off its facing) is turned to the same way, however far
+// it is: a person who has the goal at their back turns round within a step or two. The walking turns
+// would first carry the character a turning circle's width away from it (a loop of about 6 m for a goal
+// straight behind), and with the goal close to straight behind the policy's bearing bins flip between
+// left and right, so it may walk on away while it decides (random courses starting with the goal behind
+// walked up to 2.4 times their route). Not while a source is in range: the policy turns toward the source
+// then, and a turn toward the goal behind could take the next obstacle out of range on the way out of a
+// target motion, and the preparation kept for it with it.
 #pragma once
 
 #include <glm/vec2.hpp>
@@ -33,6 +41,7 @@ constexpr float kStrideTime = 0.2f;     // s: time constant of the stride scale
 // itself it walks up to about 22 degrees off a goal close ahead and weaves onto it.
 constexpr float kNearGoal = 3.0f;                          // m
 constexpr float kNearBearing = 10.0f * 3.14159265f / 180;  // rad
+constexpr float kTurnBack = 0.5f * 3.14159265f;             // rad: a goal farther off the facing is behind
 
 // Signed bearing (rad, in (-pi, pi], positive toward +X from a heading of 0) of `target` seen from
 // `position` facing `heading` (a character at heading h faces (sin h, cos h) on the floor).
@@ -46,8 +55,10 @@ struct TightTurn {
   float stride = 1.0f;  // target stride scale
 };
 // The tight turn toward `goal`: none (rate 0, stride 1) unless the goal is inside the turning circle, or
-// nearer than kNearGoal and off by more than kNearBearing (then the heading only).
-TightTurn tight_turn(glm::vec2 position, float heading, glm::vec2 goal, float turning_radius, float max_rate);
+// behind (more than kTurnBack off the facing) when `turn_back`, or nearer than kNearGoal and off by more
+// than kNearBearing (then the heading only).
+TightTurn tight_turn(glm::vec2 position, float heading, glm::vec2 goal, float turning_radius, float max_rate,
+                     bool turn_back = true);
 
 // Squaring up to an obstacle: once arrived at the launch point of a bar, beam or hurdle (arrival.h) the
 // heading turns toward the obstacle's crossing direction (its normal, from the character's side), so the
@@ -64,8 +75,11 @@ constexpr float kSquareAhead = 1.0f;
 // The yaw rate (rad/s) that squares `heading` up to `crossing_heading`, capped at `max_rate`.
 float squaring_rate(float heading, float crossing_heading, float max_rate);
 
-// A waypoint the character goes by: within `pass_radius` of it and no longer ahead (it lies behind the
-// line through the character across its facing).
+// A waypoint the character goes by: within `pass_radius` of it and no longer ahead, more than kPassedBearing
+// off its facing (beside or behind it). Straight behind was too strict: a character turning toward a
+// waypoint half a metre to its side faced it again before it fell behind, and stepped about it, turning
+// this way and that, without ever reaching it.
+constexpr float kPassedBearing = 0.25f * 3.14159265f;  // rad
 bool passed_waypoint(glm::vec2 position, float heading, glm::vec2 waypoint, float pass_radius);
 
 }  // namespace prep

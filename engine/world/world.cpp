@@ -519,7 +519,8 @@ void World::steer_tightly(int index) {
                        !rt.controller->arrived();
   if (steering || to_span) {
     const float radius = walking_turn_rate_ > 0.0f ? rt.speed / walking_turn_rate_ : 0.0f;
-    turn = tight_turn(c.position, c.heading, to_span ? c.source : *goal, radius, max_rate);
+    // A goal behind is turned to only with no source in range (steering.h).
+    turn = tight_turn(c.position, c.heading, to_span ? c.source : *goal, radius, max_rate, !c.source_in_range);
     // Walking along an obstacle to a launch place chosen for its room (launch_lateral), the character turns
     // to it however far it is, at its full stride unless the place is inside the turning circle: the policy
     // sees the source, not the way along the obstacle, and would walk into it.
