@@ -252,7 +252,7 @@ TEST_CASE("random courses of seed 1 with varied obstacles (the first 100): every
   // Varied widths, depths and heights (those the set can pass), angled up to 30 degrees, close pairs, fights
   // with one or two opponents (courses.h). A hundred courses, about 200 launches: over the first 50 the
   // share of launches prepared 1 m before (90% asked) turned on a single launch, which any change of the
-  // paths walked reshuffles (90/99 before the turn round toward a goal behind, 89/99 after; 92.8% and 92.3%
+  // paths walked reshuffles (90/99 before the turn round toward a goal behind, 89/99 after; 92.8% and 91.8%
   // over the first 100).
   CourseOptions o;
   o.seed = 1;
