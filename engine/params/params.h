@@ -177,9 +177,10 @@ struct RuntimeParams {
   // locomotion implies.
   float kept_alpha = 0.8f;
   // Tight turns: when the goal lies inside the circle of the walking turns (closer than their turning radius
-  // allows) or behind the character, the stride shortens and the heading turns toward the goal at up to this rate on top of the
-  // played motion, about the foot the character stands on (engine/world/steering.h). 180 deg/s pivots a
-  // quarter turn in a step of half a second, as people do in a sharp turn. 0: off.
+  // allows) or behind the character, the stride shortens and the heading turns toward the goal at up to
+  // this rate on top of the played motion, about the foot the character stands on
+  // (engine/world/steering.h). 180 deg/s pivots a quarter turn in a step of half a second, as people do in
+  // a sharp turn. 0: off.
   float tight_turn_deg_per_s = 180.0f;
   // m: a waypoint that is not the last counts as passed when the character goes by it within this distance
   // (it is beside or behind the character: steering.h, passed_waypoint), as well as on entering

@@ -44,9 +44,9 @@
 // - Relaxation (RuntimeParams::relax_without_source): with no source in range the played alpha is 0 while
 //   the controller decides as in the paper (controller.h, tick): the smoothed alpha falls to 0 within the
 //   filter's 3 sigma, and rises back to the policy's level when a source comes into range.
-// - Tight turns and waypoints (steering.h): a goal inside the walking turns' circle, or behind, is turned
-//   toward about the stance foot; a waypoint other than the last counts as passed when the character goes
-//   by it.
+// - Tight turns and waypoints (steering.h): a goal inside the walking turns' circle, or behind with no
+//   source in range, is turned toward about the stance foot; a waypoint other than the last counts as
+//   passed when the character goes by it.
 // - Bodies kept clear (clearance.h measures it): an obstacle is launched at facing its crossing (the arrival
 //   turns the character; one standing still off square launches, the rest of the turn in the cross-fade),
 //   and the clip is slid onto the obstacle (short of, past or beside its launch point) before the body
