@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -28,6 +29,22 @@ using test::kPi;
 std::string obstacle(const char* type, float z, float width, float height, float depth) {
   return std::string("{\"type\": \"") + type + "\", \"position\": [0, " + std::to_string(z) + "], \"size\": [" +
          std::to_string(width) + ", " + std::to_string(height) + ", " + std::to_string(depth) + "]}";
+}
+
+// The random courses' options for the built-in set (what it can act on and pass), as `prep evaluate` sets them.
+CourseOptions builtin_course_options(std::uint64_t seed, bool vary_sizes) {
+  CourseOptions o;
+  o.seed = seed;
+  o.actions = actions_of(*builtin_assets());
+  o.reach = reaches_of(*builtin_assets());
+  o.vary_sizes = vary_sizes;
+  o.heights = heights_of(*builtin_assets());
+  return o;
+}
+
+// Course k of a seed on the built-in set, as `prep evaluate --random N --seed S` draws it.
+Scenario builtin_random_course(std::uint64_t seed, int k) {
+  return make_courses(builtin_course_options(seed, false), k + 1)[static_cast<size_t>(k)];
 }
 
 Scenario course(const std::vector<std::string>& objects, float goal_z) {
@@ -167,12 +184,7 @@ TEST_CASE("a goal behind at the start: the character turns round where it stands
   // Random course 24 of seed 2026: the user starts facing away from a goal 11.8 m off, a bar on the way.
   // With the goal nearly straight behind the policy's bearing bins flipped between left and right: the
   // character walked 6 m away from the goal, then looped back, 2.3 times the route in all.
-  CourseOptions o;
-  o.seed = 2026;
-  o.actions = actions_of(*builtin_assets());
-  o.reach = reaches_of(*builtin_assets());
-  o.heights = heights_of(*builtin_assets());
-  const Scenario course = make_courses(o, 25)[24];
+  const Scenario course = builtin_random_course(2026, 24);
   REQUIRE(course.goal.size() == 1);
   World world(course, builtin_assets());
   world.set_auto(true);
@@ -254,13 +266,8 @@ TEST_CASE("random courses of seed 1 with varied obstacles (the first 100): every
   // share of launches prepared 1 m before (90% asked) turned on a single launch, which any change of the
   // paths walked reshuffles (90/99 before the turn round toward a goal behind, 89/99 after; 92.8% and 91.8%
   // over the first 100).
-  CourseOptions o;
-  o.seed = 1;
-  o.actions = actions_of(*builtin_assets());
-  o.reach = reaches_of(*builtin_assets());
-  o.vary_sizes = true;
-  o.heights = heights_of(*builtin_assets());
-  const CourseTotals t = course_totals(evaluate_courses(make_courses(o, 100), builtin_assets(), 2));
+  const CourseTotals t =
+      course_totals(evaluate_courses(make_courses(builtin_course_options(1, true), 100), builtin_assets(), 2));
   REQUIRE(!t.checks.empty());
   for (const CourseCheck& c : t.checks) {
     INFO(c.name << ": " << c.measure);
@@ -347,12 +354,7 @@ TEST_CASE("two opponents beaten before a waypoint: neither steps aside onto it, 
   // faced (toward whom it punched), and the first one stood 0.4 m from that waypoint: bodies keep apart, so
   // the user circled it for 40 s and never reached it. Stepping aside from the way to the user's next
   // waypoint, they leave it free.
-  CourseOptions o;
-  o.seed = 99;
-  o.actions = actions_of(*builtin_assets());
-  o.reach = reaches_of(*builtin_assets());
-  o.heights = heights_of(*builtin_assets());
-  const Scenario course = make_courses(o, 11)[10];
+  const Scenario course = builtin_random_course(99, 10);
   REQUIRE(course.objects.size() == 2);
   REQUIRE(course.goal.size() == 3);
   World world(course, builtin_assets());
