@@ -222,6 +222,12 @@ void World::choose_source(int index) {
     c.source = launch_point(index, c.source_object_position, c.prepared_for);
     return;
   }
+  // During a cross-fade (out of a target clip, kept preparation) the stream's root has been placed by the
+  // floor alignment of the two clips, and may face tens of degrees away from the body shown: the source
+  // kept from the last tick is kept if it lies ahead of either.
+  const Runtime& rt = *runtime_[static_cast<size_t>(index)];
+  const bool fading = rt.fade_left > 0.0f && !c.pose.rotations.empty();
+  const glm::vec2 shown_fwd = fading ? forward_of(heading_of(c.pose.rotations[0])) : fwd;
   for (int k = 0; k < static_cast<int>(objects_.size()); ++k) {
     const WorldObject& o = objects_[static_cast<size_t>(k)];
     if (o.spec.type == ObjectType::Opponent || assets_->target(o.spec.action).clip < 0) continue;
@@ -239,7 +245,7 @@ void World::choose_source(int index) {
     }
     // The source of the last tick is kept more loosely (kSourceKeptAngle, kSourceKeptWidth): a character
     // that weaves or turns on its approach does not lose it and find it again past its launch point.
-    const bool kept = k == runtime_[static_cast<size_t>(index)]->source_key;
+    const bool kept = k == rt.source_key;
     float distance;
     if (is_across(o.spec.type)) {
       const glm::vec2 n = forward_of(o.spec.heading), along = left_of(o.spec.heading);
@@ -261,7 +267,8 @@ void World::choose_source(int index) {
       distance = glm::length(d);
     }
     // Behind: not in the facing direction.
-    if (glm::dot(d, fwd) <= (kept ? std::cos(kSourceKeptAngle) * glm::length(d) : 0.0f)) continue;
+    if (!kept && glm::dot(d, fwd) <= 0.0f) continue;
+    if (kept && std::max(glm::dot(d, fwd), glm::dot(d, shown_fwd)) <= std::cos(kSourceKeptAngle) * glm::length(d)) continue;
     if (distance < best) {
       best = distance;
       c.has_source = true;

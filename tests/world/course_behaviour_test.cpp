@@ -375,3 +375,35 @@ TEST_CASE("two opponents beaten before a waypoint: neither steps aside onto it, 
   CHECK(e.reached_goal);
   CHECK(e.circling_seconds == 0.0f);
 }
+
+TEST_CASE("out of a recorded kick that ends turned, the hurdle 1.5 m on stays the source and preparation is kept") {
+  // Random course 74 of seed 1 on the daz43 set. The kick's follow-through leaves the pelvis turned; the walk
+  // it is left for (kept preparation) is placed by the floor alignment of the two clips and faces 27 degrees
+  // farther off, so the hurdle fell just past the kept source's 120 degrees for 0.3 s: nothing was in range,
+  // alpha relaxed from 1.0 to 0.21 and rose again. Through the cross-fade the body shown still faces it.
+  Scenario probe;
+  probe.motions = test::repo() + "/assets/manifests/daz43.json";
+  probe.params_file = test::repo() + "/assets/scenarios/controller_daz43.json";
+  const auto assets = prepare_world_assets(probe, load_scenario_params(probe), test::tmp_dir() + "/policy-cache");
+  CourseOptions options;
+  options.seed = 1;
+  options.motions = probe.motions;
+  options.params_file = probe.params_file;
+  options.actions = actions_of(*assets);
+  options.reach = reaches_of(*assets);
+  options.heights = heights_of(*assets);
+  const Scenario course = make_courses(options, 75)[74];
+  REQUIRE(course.objects.size() == 3);
+  REQUIRE(course.objects[0].type == ObjectType::Ball);
+  REQUIRE(course.objects[1].type == ObjectType::Hurdle);
+  const CourseEvaluation e = evaluate_courses({course}, assets, 1)[0];
+  INFO(e.description);
+  CHECK(e.reached_goal);
+  REQUIRE(e.launches.size() == 3);
+  CHECK(e.launches[0].action == TargetAction::Kick);
+  CHECK(e.launches[1].action == TargetAction::Jump);
+  REQUIRE_FALSE(e.kept.empty());
+  CHECK(e.kept[0].first == 0);
+  CHECK(e.kept[0].second == 1);
+  CHECK(e.kept[0].min_alpha >= 0.5f);
+}
