@@ -312,6 +312,9 @@ World::Approach World::approach(int index) const {
     // A ball is kicked along the facing: faced within kSquareCrossing (the arrival turns to it).
     const bool ball = c.source_object >= 0 && objects_[static_cast<size_t>(c.source_object)].spec.type == ObjectType::Ball;
     a.square = a.ahead && (!ball || glm::dot(to_object, fwd) >= std::cos(kSquareCrossing) * d);
+    // A ball met off to the side, as an obstacle met off square, is arrived at (and turned to) within
+    // kArrivalFacing: walking on past it, the character would leave it unkicked.
+    a.facing = ball && glm::dot(to_object, fwd) >= std::cos(kArrivalFacing) * d;
   }
   return a;
 }

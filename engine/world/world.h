@@ -456,7 +456,7 @@ class World {
   struct Approach {
     float to_launch = 0.0f;
     bool ahead = false;
-    bool facing = false;  // an obstacle within kArrivalFacing of its crossing: close enough to arrive at
+    bool facing = false;  // an obstacle within kArrivalFacing of its crossing, a ball of the facing: arrived at
     bool square = false;  // ahead, and an obstacle within kSquareCrossing of its crossing: launched at
     bool beside = false;  // beside the part of an obstacle's span a launch may start from: to go there first
   };

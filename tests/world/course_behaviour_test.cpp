@@ -407,3 +407,22 @@ TEST_CASE("out of a recorded kick that ends turned, the hurdle 1.5 m on stays th
   CHECK(e.kept[0].second == 1);
   CHECK(e.kept[0].min_alpha >= 0.5f);
 }
+
+TEST_CASE("a ball met off to the side is turned to and kicked, not walked past") {
+  // Random course 10 of seed 777: out of two hurdles the user walks toward its waypoint with the ball ahead,
+  // and comes within the kick's reach of it 51 degrees off the facing, past the 45 degrees a source counts
+  // as ahead. Without an arrival the character walked on past it and left it unkicked.
+  const Scenario course = builtin_random_course(777, 10);
+  REQUIRE(course.objects.size() == 3);
+  REQUIRE(course.objects[2].type == ObjectType::Ball);
+  const CourseEvaluation e = evaluate_courses({course}, builtin_assets(), 1)[0];
+  CHECK(e.reached_goal);
+  CHECK(e.objects_unused == 0);
+  int kicks = 0;
+  for (const CourseLaunch& l : e.launches) {
+    if (l.action != TargetAction::Kick) continue;
+    ++kicks;
+    CHECK(l.alpha_at_launch >= 0.85f);
+  }
+  CHECK(kicks == 1);
+}
