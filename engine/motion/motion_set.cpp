@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "engine/motion/bvh.h"
+#include "engine/motion/held_stand.h"
 #include "engine/motion/kinematics.h"
 #include "engine/motion/steer.h"
 #include "engine/util/error.h"
@@ -274,6 +275,14 @@ void finalize_motion_set(MotionSet& set, const Params& params) {
   if (!set.skeleton) throw std::invalid_argument("motion set '" + set.name + "' has no skeleton");
   set.body = BodyMap::detect(*set.skeleton);
   set.mass = MassModel::build(*set.skeleton, set.body);
+  // Characters start and stop on an idle clip: a set without one stands in its walk's mean posture.
+  const auto has = [&](Role role) {
+    return std::any_of(set.clips.begin(), set.clips.end(), [&](const MotionClip& c) { return c.role == role && c.cyclic; });
+  };
+  if (!has(Role::Idle) && has(Role::Walk)) {
+    const auto walk = std::find_if(set.clips.begin(), set.clips.end(), [](const MotionClip& c) { return c.role == Role::Walk && c.cyclic; });
+    set.clips.push_back(held_stand_from_walk(*walk, set.body));
+  }
   for (MotionClip& c : set.clips) c.contacts = detect_contacts(c.clip, set.body, params.contacts);
 }
 

@@ -33,6 +33,7 @@ struct MotionClip {
   int target_frame = -1;        // T_t for target motions (clip frames), -1 for locomotion
   float steer_rad_per_s = 0.0f; // the manifest's steer_deg_per_s (steer.h), in rad/s; 0 for a clip as recorded
   std::string source_file;      // where it came from (a BVH path, or "builtin")
+  std::string derived_from;     // the clip the loader made it from (a held stand, held_stand.h); empty for a take
   std::vector<FrameContacts> contacts;  // per frame, from detect_contacts
 };
 

@@ -295,7 +295,7 @@ void choose_core(FolderScan& scan) {
 
 void list_lacks(FolderScan& scan) {
   auto has = [&](Role r) { return std::any_of(scan.clips.begin(), scan.clips.end(), [&](const ScannedClip& c) { return c.role == r; }); };
-  if (!has(Role::Idle)) scan.lacks.push_back("no idle: a character that has arrived stands on the walk");
+  if (!has(Role::Idle)) scan.lacks.push_back("no idle: characters stand in a held posture made from the walk (upright, its arms as they hang)");
   const struct {
     Role role;
     const char* consequence;

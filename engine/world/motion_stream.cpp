@@ -54,10 +54,17 @@ bool MotionStream::queue(int node) {
 void MotionStream::switch_to(int node, glm::vec2 position, float heading) {
   const int from = this->node(), from_frame = clip_frame();
   const int best = graph_->best_entry_frame(from, from_frame, node);  // the nearest window (memoized)
+  const auto held = [&](int n) { return !graph_->set().clips[static_cast<size_t>(n)].derived_from.empty(); };
+  if (held(from) || held(node)) {
+    // A held stand (held_stand.h) does not move: the floor alignment of its window with a moving one turns
+    // the new clip by whatever fits a still body best, tens of degrees. Start it where and as the body faces.
+    start(node, best, position, heading);
+    return;
+  }
   // Place the new clip as the graph would across an edge: the floor alignment of the two windows (Kovar's
   // closed form) composed with where the playing clip stands now, then moved to `position` (the
-  // synthesized root, which Eq. 3-4 keeps behind the raw locomotion). `heading` is only a fallback.
-  (void)heading;
+  // synthesized root, which Eq. 3-4 keeps behind the raw locomotion). `heading` only places a clip left
+  // from or into a held stand.
   const Pose& raw = graph_->set().clips[static_cast<size_t>(from)].clip.frames[static_cast<size_t>(from_frame)];
   FloorTransform now;
   now.angle = heading_of(pose_.rotations[0]) - heading_of(raw.rotations[0]);

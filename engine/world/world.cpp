@@ -75,7 +75,10 @@ World::World(const Scenario& scenario, std::shared_ptr<const WorldAssets> assets
     rt->controller = std::make_unique<Controller>(policy_, params_);
     const auto idle = std::find(assets_->core_nodes.begin(), assets_->core_nodes.end(), assets_->idle_node);
     rt->controller->reset(idle == assets_->core_nodes.end() ? 0 : static_cast<int>(idle - assets_->core_nodes.begin()), 0);
-    rt->stream.start(assets_->idle_node, -1, position, heading);
+    // A set without an idle clip stands in a posture held from its walk (held_stand.h), and starts on the
+    // walk itself: the cross-fade out of the stand slides the feet from side by side into a stride.
+    const bool held = !assets_->set->clips[static_cast<size_t>(assets_->idle_node)].derived_from.empty();
+    rt->stream.start(held ? find_cyclic_clip(*assets_->set, Role::Walk) : assets_->idle_node, -1, position, heading);
     rt->scratch = synthesizer_->make_scratch();
     runtime_.push_back(std::move(rt));
   };

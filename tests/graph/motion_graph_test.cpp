@@ -133,5 +133,5 @@ TEST_CASE("graphviz: one node per clip, core nodes as boxes") {
   for (const GraphNode& n : g.nodes()) CHECK(dot.find(n.name) != std::string::npos);
   size_t boxes = 0;
   for (size_t at = dot.find("shape=box"); at != std::string::npos; at = dot.find("shape=box", at + 1)) ++boxes;
-  CHECK(boxes == 4);  // core: the walk, the two turns steered from it, the recorded left turn
+  CHECK(boxes == 5);  // core: the walk, the two turns steered from it, the recorded left turn, the held stand
 }

@@ -94,6 +94,11 @@ TEST_CASE("both CMU manifests load and list every clip of their folder with its 
     std::set<std::string> listed;
     for (const MotionClip& c : set.clips) {
       CAPTURE(c.clip.name);
+      if (!c.derived_from.empty()) {  // cmu31 has no idle: the stand held from its walk (held_stand.h)
+        CHECK(c.role == Role::Idle);
+        CHECK(set.find(c.derived_from) >= 0);
+        continue;
+      }
       const std::string file = fs::path(c.source_file).filename().string();
       listed.insert(file);
       roles.insert(role_name(c.role));
@@ -170,7 +175,7 @@ TEST_CASE("every loop range of the manifests is a close pose match") {
   for (const std::string name : {"daz43", "cmu31"}) {
     const MotionSet& set = manifest_set(name);
     for (const MotionClip& c : set.clips) {
-      if (!c.cyclic) continue;
+      if (!c.cyclic || !c.derived_from.empty()) continue;  // a held stand joins itself exactly
       CAPTURE(c.clip.name);
       // Playing loop_last then loop_first: the jump in pose there, against how different the poses half a
       // loop apart are (for a gait cycle: the legs swapped). An arbitrary loop range joins at about that.
@@ -198,6 +203,7 @@ TEST_CASE("clips of other performers play on the reference skeleton: rotations k
   float largest_change = 0;
   for (const MotionClip& c : cmu.clips) {
     CAPTURE(c.clip.name);
+    if (!c.derived_from.empty()) continue;  // made from the walk, not read from a file
     BvhReadOptions options;
     options.unit_scale = 0.05644f;
     const Clip file = read_bvh(c.source_file, options);
@@ -383,5 +389,55 @@ TEST_CASE("steered turns: the heading gains rate x time, planted feet stay as st
     int agree = 0;
     for (size_t f = 0; f < walk.contacts.size(); ++f) agree += turn.contacts[f] == walk.contacts[f];
     CHECK(agree >= static_cast<int>(0.96 * static_cast<double>(walk.contacts.size())));
+  }
+}
+
+TEST_CASE("a set with no idle stands in a posture held from its walk: upright, feet side by side on the floor, arms down") {
+  const MotionSet& set = manifest_set("cmu31");  // its takes have no quiet standing
+  const int stand = set.find("walk_69_01_stand");
+  REQUIRE(stand >= 0);
+  const MotionClip& c = set.clips[static_cast<size_t>(stand)];
+  CHECK(c.role == Role::Idle);
+  CHECK(c.cyclic);
+  CHECK(c.derived_from == "walk_69_01");
+  REQUIRE(c.clip.frame_count() >= 3);
+  CHECK(c.loop_last < c.clip.frame_count() - 1);  // a loop edge blends from the frame after loop_last
+  const Pose& pose = c.clip.frames.front();
+  for (const Pose& p : c.clip.frames) {  // held: no joint moves, the root does not travel
+    CHECK(p.root_position == pose.root_position);
+    for (size_t j = 0; j < p.rotations.size(); ++j) CHECK(p.rotations[j] == pose.rotations[j]);
+  }
+  std::vector<glm::vec3> at;
+  std::vector<glm::quat> turned;
+  forward_kinematics(*set.skeleton, pose, at, &turned);
+  const BodyMap& b = set.body;
+  const glm::vec3 forward = glm::normalize(glm::vec3(pose.rotations[0] * glm::vec3(0.0f, 0.0f, 1.0f)) * glm::vec3(1.0f, 0.0f, 1.0f));
+  // On the floor: the lowest heel or toe tip at 0, both feet down (contacts on every frame).
+  float lowest = INFINITY;
+  for (const LegChain& leg : b.legs) {
+    lowest = std::min(lowest, at[static_cast<size_t>(leg.ankle)].y);
+    lowest = std::min(lowest, end_site_position(*set.skeleton, leg.toe_tip_joint, at, turned).y);
+  }
+  CHECK(std::abs(lowest) < 0.005f);
+  for (const FrameContacts& f : c.contacts) {
+    CHECK(f[kLeft].any());
+    CHECK(f[kRight].any());
+  }
+  // Side by side: the ankles within 3 cm of each other along the facing, under the hips.
+  const glm::vec3 left = at[static_cast<size_t>(b.legs[kLeft].ankle)], right = at[static_cast<size_t>(b.legs[kRight].ankle)];
+  CHECK(std::abs(glm::dot(left - right, forward)) < 0.03f);
+  // Upright: the head above the pelvis within 10 cm on the floor; the knees straight (the hip, knee and
+  // ankle in a line within 2 cm).
+  const glm::vec3 head = at[static_cast<size_t>(b.head)], pelvis = at[static_cast<size_t>(b.root)];
+  CHECK(glm::length(glm::vec2(head.x - pelvis.x, head.z - pelvis.z)) < 0.10f);
+  for (const LegChain& leg : b.legs) {
+    const glm::vec3 hip = at[static_cast<size_t>(leg.hip)], knee = at[static_cast<size_t>(leg.knee)], ankle = at[static_cast<size_t>(leg.ankle)];
+    CHECK(glm::length(glm::cross(glm::normalize(ankle - hip), knee - hip)) < 0.02f);
+  }
+  // The arms hang: each hand below its shoulder by most of the arm's length.
+  for (const ArmChain& arm : b.arms) {
+    const glm::vec3 shoulder = at[static_cast<size_t>(arm.shoulder)], hand = at[static_cast<size_t>(arm.wrist)];
+    const float reach = glm::length(at[static_cast<size_t>(arm.elbow)] - shoulder) + glm::length(hand - at[static_cast<size_t>(arm.elbow)]);
+    CHECK(shoulder.y - hand.y > 0.8f * reach);
   }
 }

@@ -426,3 +426,24 @@ TEST_CASE("a ball met off to the side is turned to and kicked, not walked past")
   }
   CHECK(kicks == 1);
 }
+
+TEST_CASE("on a set with no idle clip the user stops at its goal and stands there") {
+  // cmu31's takes have no quiet standing: a character stood on the walk, and walked on past its goal.
+  const Scenario s = load_scenario(test::repo() + "/assets/scenarios/jump_cmu31.json");
+  const auto assets = prepare_world_assets(s, load_scenario_params(s), test::tmp_dir() + "/policy-cache");
+  CHECK(assets->set->clips[static_cast<size_t>(assets->idle_node)].role == Role::Idle);
+  World world(s, assets);
+  world.set_auto(true);
+  float reached = -1.0f;
+  glm::vec2 one_second_on(0.0f);
+  for (int k = 0; k < 60 * 60 && (reached < 0.0f || world.time() < reached + 4.0f); ++k) {
+    world.step();
+    const WorldCharacter& u = world.characters()[static_cast<size_t>(world.user())];
+    if (u.reached_goal && reached < 0.0f) reached = world.time();
+    if (reached >= 0.0f && world.time() <= reached + 1.0f) one_second_on = u.position;
+  }
+  REQUIRE(reached >= 0.0f);
+  const WorldCharacter& u = world.characters()[static_cast<size_t>(world.user())];
+  CHECK(glm::length(u.position - one_second_on) < 0.05f);  // three seconds standing
+  CHECK(glm::length(u.position - s.goal.back()) <= world.params().reward.goal_radius + 0.3f);
+}
