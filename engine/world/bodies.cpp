@@ -302,8 +302,15 @@ void World::keep_bodies_apart() {
 
 // The share of setting characters i and j apart along `dir` (from i toward j) that falls to i: the share of
 // the closing that is its own (the one walking in yields to the one standing), half each when neither
-// moves toward the other.
+// moves toward the other. One crossing an obstacle yields nothing: its clip is placed to pass over or under
+// the obstacle (start_target slides it onto its launch), and a shove would carry it into the rail or board.
 float World::closing_share(size_t i, size_t j, glm::vec2 dir) const {
+  const auto crossing = [&](size_t k) {
+    const int object = runtime_[k]->target_object;
+    return characters_[k].in_target && object >= 0 && is_across(objects_[static_cast<size_t>(object)].spec.type);
+  };
+  const bool i_crossing = crossing(i), j_crossing = crossing(j);
+  if (i_crossing != j_crossing) return i_crossing ? 0.0f : 1.0f;
   const float vi = std::max(0.0f, glm::dot(runtime_[i]->velocity, dir));
   const float vj = std::max(0.0f, -glm::dot(runtime_[j]->velocity, dir));
   return vi + vj > 1e-4f ? vi / (vi + vj) : 0.5f;

@@ -427,6 +427,27 @@ TEST_CASE("a ball met off to the side is turned to and kicked, not walked past")
   CHECK(kicks == 1);
 }
 
+TEST_CASE("a hurdle jumped beside a beaten opponent: the jump is not shoved into the board") {
+  // Random course 111 of seed 31337: the user beats an opponent, walks along the hurdle behind it to its
+  // launch place and launches 0.3 m too near, so the clip is slid back onto its launch point, toward the
+  // opponent standing 0.9 m away. Kept apart, the user took the whole shove (it was the one closing in),
+  // the slide was undone, and a foot went 8 cm into the board. The one crossing now gives no way.
+  const Scenario course = builtin_random_course(31337, 111);
+  REQUIRE(course.objects.size() == 3);
+  REQUIRE(course.objects[1].type == ObjectType::Hurdle);
+  const CourseEvaluation e = evaluate_courses({course}, builtin_assets(), 1)[0];
+  INFO(e.clearance.min_object_what);
+  CHECK(e.reached_goal);
+  int jumps = 0;
+  for (const CourseLaunch& l : e.launches) {
+    if (l.action != TargetAction::Jump) continue;
+    ++jumps;
+    CHECK(l.min_clearance >= -clearance_metric::kObjectTolerance);
+  }
+  CHECK(jumps == 2);
+  CHECK(e.clearance.object_frames == 0);
+}
+
 TEST_CASE("on a set with no idle clip the user stops at its goal and stands there") {
   // cmu31's takes have no quiet standing: a character stood on the walk, and walked on past its goal.
   const Scenario s = load_scenario(test::repo() + "/assets/scenarios/jump_cmu31.json");
