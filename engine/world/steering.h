@@ -70,7 +70,8 @@ constexpr float kSquareTolerance = 2.0f * 3.14159265f / 180;   // rad: left alon
 // squared up to (or faced) before the arrival too. Out of a previous obstacle's clip the next one may lie
 // this near at an angle, and the policy, seeing the launch point within a bearing bin of ahead, may turn
 // the other way or walk past a ball to the side. (One approached from farther is walked to as the policy
-// steers, and squared up to on arrival.)
+// steers, and squared up to on arrival.) A ball this near is faced however it was approached: met off to
+// the side, short of its arrival radius, it was walked past.
 constexpr float kSquareAhead = 1.0f;
 // The yaw rate (rad/s) that squares `heading` up to `crossing_heading`, capped at `max_rate`.
 float squaring_rate(float heading, float crossing_heading, float max_rate);

@@ -501,8 +501,13 @@ void World::steer_tightly(int index) {
     if (glm::length(d) > 1e-3f && std::fabs(wrap_angle(std::atan2(d.x, d.y) - c.heading)) > kFacingSlack)
       turn.rate = squaring_rate(c.heading, std::atan2(d.x, d.y), max_rate);
   }
+  // A ball within kSquareAhead is faced however it was approached: its kick is aimed along the facing, and
+  // a character walking by one off to the side would pass it by (steering.h).
+  const bool ball_near = c.source_object >= 0 && c.to_launch < kSquareAhead &&
+                         objects_[static_cast<size_t>(c.source_object)].spec.type == ObjectType::Ball;
   if (max_rate > 0.0f && c.control == Control::User && c.has_source && c.source_object >= 0 &&
-      (rt.controller->arrived() || (c.source_ahead && !rt.beside && !rt.approach_from_far && c.to_launch < kSquareAhead))) {
+      (rt.controller->arrived() || ball_near ||
+       (c.source_ahead && !rt.beside && !rt.approach_from_far && c.to_launch < kSquareAhead))) {
     const WorldObject& o = objects_[static_cast<size_t>(c.source_object)];
     if (is_across(o.spec.type)) {
       glm::vec2 n = forward_of(o.spec.heading);

@@ -427,6 +427,23 @@ TEST_CASE("a ball met off to the side is turned to and kicked, not walked past")
   CHECK(kicks == 1);
 }
 
+TEST_CASE("a ball passed 1.2 m to the side within a metre of its launch distance is turned to and kicked") {
+  // Random course 13 of seed 777: after a duck the user walks on with the ball off to its side, never
+  // nearer than 0.31 m short of its launch distance, so never within the arrival radius: it walked past
+  // and left the ball. A ball within a metre of its launch distance is now faced however it was approached.
+  const Scenario course = builtin_random_course(777, 13);
+  const CourseEvaluation e = evaluate_courses({course}, builtin_assets(), 1)[0];
+  CHECK(e.reached_goal);
+  CHECK(e.objects_unused == 0);
+  int kicks = 0;
+  for (const CourseLaunch& l : e.launches) {
+    if (l.action != TargetAction::Kick) continue;
+    ++kicks;
+    CHECK(l.alpha_at_launch >= 0.85f);
+  }
+  CHECK(kicks == 1);
+}
+
 TEST_CASE("a hurdle jumped beside a beaten opponent: the jump is not shoved into the board") {
   // Random course 111 of seed 31337: the user beats an opponent, walks along the hurdle behind it to its
   // launch place and launches 0.3 m too near, so the clip is slid back onto its launch point, toward the
