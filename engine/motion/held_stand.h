@@ -1,7 +1,7 @@
 // A standing clip for a motion set that has none, made from its walk.
 //
-// Characters start and stop on the set's idle clip (engine/world/world.h). A set without one (cmu31's takes
-// have no quiet standing) had them stop on the walk, which kept walking where they should stand: a user at
+// Characters stop on the set's idle clip (engine/world/world.h). A set without one (cmu31's takes have no
+// quiet standing) had them stop on the walk, which kept walking where they should stand: a user at
 // its goal, a beaten opponent at its spot aside, walking on until an obstacle stopped them. Any one frame of
 // the walk, held, would freeze a stride, and the walk's mean posture leans and bends its knees as walking
 // does. A stand is the skeleton's rest pose for the trunk and legs (upright, knees straight, feet under the

@@ -275,7 +275,7 @@ void finalize_motion_set(MotionSet& set, const Params& params) {
   if (!set.skeleton) throw std::invalid_argument("motion set '" + set.name + "' has no skeleton");
   set.body = BodyMap::detect(*set.skeleton);
   set.mass = MassModel::build(*set.skeleton, set.body);
-  // Characters start and stop on an idle clip: a set without one stands in its walk's mean posture.
+  // Characters stop on an idle clip: a set without one gets a stand held from its walk (held_stand.h).
   const auto has = [&](Role role) {
     return std::any_of(set.clips.begin(), set.clips.end(), [&](const MotionClip& c) { return c.role == role && c.cyclic; });
   };

@@ -182,7 +182,9 @@ struct WorldAssets {
   // The mass segments whose centroid moves when a foot is pitched about its ankle (the floor stage): after
   // such a tick the world takes only theirs again.
   std::vector<int> foot_segments;
-  int idle_node = -1;                  // where characters start and stop (the idle core clip, else walk)
+  // Where characters stop: the idle clip (a set without one has a stand held from its walk, held_stand.h;
+  // they start on the walk then), else the walk. Where they start otherwise.
+  int idle_node = -1;
   std::shared_ptr<const Policy> policy;
 
   const TargetMotion& target(TargetAction a) const { return targets[static_cast<size_t>(a)]; }
