@@ -77,6 +77,20 @@ Trace run(World& world, float seconds) {
   return t;
 }
 
+// A built-in course with one ball: the goal reached, nothing left, the ball kicked once and prepared.
+void check_goal_and_one_prepared_kick(const Scenario& course) {
+  const CourseEvaluation e = evaluate_courses({course}, builtin_assets(), 1)[0];
+  CHECK(e.reached_goal);
+  CHECK(e.objects_unused == 0);
+  int kicks = 0;
+  for (const CourseLaunch& l : e.launches) {
+    if (l.action != TargetAction::Kick) continue;
+    ++kicks;
+    CHECK(l.alpha_at_launch >= 0.85f);
+  }
+  CHECK(kicks == 1);
+}
+
 const LaunchRecord* launch_of(const World& world, TargetAction action) {
   for (const LaunchRecord& r : world.launches())
     if (r.character == world.user() && r.action == action) return &r;
@@ -415,16 +429,7 @@ TEST_CASE("a ball met off to the side is turned to and kicked, not walked past")
   const Scenario course = builtin_random_course(777, 10);
   REQUIRE(course.objects.size() == 3);
   REQUIRE(course.objects[2].type == ObjectType::Ball);
-  const CourseEvaluation e = evaluate_courses({course}, builtin_assets(), 1)[0];
-  CHECK(e.reached_goal);
-  CHECK(e.objects_unused == 0);
-  int kicks = 0;
-  for (const CourseLaunch& l : e.launches) {
-    if (l.action != TargetAction::Kick) continue;
-    ++kicks;
-    CHECK(l.alpha_at_launch >= 0.85f);
-  }
-  CHECK(kicks == 1);
+  check_goal_and_one_prepared_kick(course);
 }
 
 TEST_CASE("a ball passed 1.2 m to the side within a metre of its launch distance is turned to and kicked") {
@@ -432,16 +437,7 @@ TEST_CASE("a ball passed 1.2 m to the side within a metre of its launch distance
   // nearer than 0.31 m short of its launch distance, so never within the arrival radius: it walked past
   // and left the ball. A ball within a metre of its launch distance is now faced however it was approached.
   const Scenario course = builtin_random_course(777, 13);
-  const CourseEvaluation e = evaluate_courses({course}, builtin_assets(), 1)[0];
-  CHECK(e.reached_goal);
-  CHECK(e.objects_unused == 0);
-  int kicks = 0;
-  for (const CourseLaunch& l : e.launches) {
-    if (l.action != TargetAction::Kick) continue;
-    ++kicks;
-    CHECK(l.alpha_at_launch >= 0.85f);
-  }
-  CHECK(kicks == 1);
+  check_goal_and_one_prepared_kick(course);
 }
 
 TEST_CASE("a hurdle jumped beside a beaten opponent: the jump is not shoved into the board") {
