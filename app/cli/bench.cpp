@@ -1,7 +1,8 @@
 // prep bench: the speed figures (engine/world/benchmark.h measures; this prints): SARSA steps per
 // second, synthesis microseconds per character-frame with and without the balance optimizer (the built-in
 // library and the 43-joint daz43 set), a crowd of 1 to 20,000 characters with controller and full synthesis
-// at 60 Hz on both cores, graph build time, start-up to the first synthesized frame, peak memory; then each
+// at 60 Hz on both cores (with the machine's own pauses of a busy thread, timed before it), graph build time,
+// start-up to the first synthesized frame, peak memory; then each
 // aim (app/cli/bench_aims.h) with its figure and whether it was met.
 #include <cstdio>
 #include <filesystem>
@@ -17,6 +18,7 @@
 #include "engine/library/builtin.h"
 #include "engine/util/files.h"
 #include "engine/world/benchmark.h"
+#include "engine/world/host_pauses.h"
 #include "engine/world/policy_cache.h"
 
 namespace {
@@ -26,6 +28,7 @@ struct Options {
   std::vector<int> crowd{1, 10, 100, 1000, 4000, 8000, 12000, 20000};
   int frames = 600, warmup = 30, threads = 2;
   int synthesis_characters = 1000, synthesis_frames = 60;
+  double pause_probe_seconds = 5.0;
   long long sarsa_steps = 20000000;
   std::string scenario = "assets/scenarios/kick.json";
   std::string cache;
@@ -94,6 +97,22 @@ void run(const Options& o) {
   j["graph_build_ms"] = nlohmann::json::object();
   for (const auto& set : sets) j["graph_build_ms"][set->name] = prep::benchmark_graph_build_ms(*set, paper, 3);
 
+  // The machine alone, on the crowd's threads, before the crowd: how often and how long it stops a busy
+  // thread (host_pauses.h), to read the crowd's slowest frames against.
+  if (o.pause_probe_seconds > 0.0) {
+    say("pauses of the machine ... ");
+    const prep::HostPauseProbe p = prep::probe_host_pauses(o.pause_probe_seconds, o.threads);
+    j["host_pauses"] = {{"seconds", p.seconds},
+                        {"threads", p.threads},
+                        {"pieces", p.pieces},
+                        {"median_piece_us", p.median_piece_us},
+                        {"limit_ms", prep::kPauseMs},
+                        {"pauses", p.paused.pauses},
+                        {"longest_ms", p.paused.longest_ms},
+                        {"paused_ms", p.paused.paused_ms}};
+    say(std::to_string(p.paused.pauses) + " pauses, the longest " + std::to_string(p.paused.longest_ms) + " ms\n");
+  }
+
   const prep::Scenario scenario = prep::load_scenario(repo_path(o.scenario));
   const auto assets = prep::prepare_world_assets(scenario, prep::load_scenario_params(scenario), cache);
   j["crowd_scenario"] = scenario.name;
@@ -108,6 +127,9 @@ void run(const Options& o) {
                           {"median_ms_per_frame", c.median_ms_per_frame},
                           {"p99_ms_per_frame", c.p99_ms_per_frame},
                           {"max_ms_per_frame", c.max_ms_per_frame},
+                          {"paused_frames", c.paused_frames},
+                          {"max_unpaused_ms_per_frame", c.max_unpaused_ms_per_frame},
+                          {"longest_run_ms", c.longest_run_ms},
                           {"cpu_ms_per_frame", c.cpu_ms_per_frame},
                           {"us_per_character_frame", 1000.0 * c.ms_per_frame / c.characters},
                           {"synthesized_fraction", c.synthesized_fraction},
@@ -150,6 +172,18 @@ void run(const Options& o) {
                 100.0 * c["worst_frame_balanced_fraction"].get<double>(), c["fit_ms_none_balanced"].get<double>(),
                 c["fit_ms_all_balanced"].get<double>(), c["us_per_character_frame"].get<double>(), memory);
   }
+  for (const auto& c : j["crowd"]) {
+    if (c["paused_frames"].get<int>() == 0) continue;
+    std::printf("| crowd of %d: frames in which a run of worlds was paused (over %.0f ms) | %d of %d; the slowest frame without a pause %.2f ms |\n",
+                c["characters"].get<int>(), prep::kPauseMs, c["paused_frames"].get<int>(), c["frames"].get<int>(),
+                c["max_unpaused_ms_per_frame"].get<double>());
+  }
+  if (j.contains("host_pauses")) {
+    const auto& p = j["host_pauses"];
+    std::printf("| the machine alone: pauses of a busy thread over %.0f ms (%d threads, %.0f s, pieces of %.0f us) | %d, the longest %.1f ms |\n",
+                p["limit_ms"].get<double>(), p["threads"].get<int>(), p["seconds"].get<double>(),
+                p["median_piece_us"].get<double>(), p["pauses"].get<int>(), p["longest_ms"].get<double>());
+  }
   for (const auto& [name, ms] : j["graph_build_ms"].items())
     std::printf("| motion graph build, %s | %.1f ms |\n", name.c_str(), ms.get<double>());
   std::printf("| start-up to the first synthesized frame (obstacles, %s policy) | %.0f ms |\n",
@@ -175,6 +209,9 @@ prep::cli::RegisterCommand bench_command(
       app.add_option("--threads", o->threads, "Threads for the crowd (default 2)");
       app.add_option("--synthesis-characters", o->synthesis_characters, "Characters in the synthesis benchmark (default 1000)");
       app.add_option("--synthesis-frames", o->synthesis_frames, "Frames in the synthesis benchmark (default 60)");
+      app.add_option("--pause-probe", o->pause_probe_seconds,
+                     "Seconds of timing a fixed piece of arithmetic on the crowd's threads before the crowd, to "
+                     "count the machine's own pauses of a busy thread (default 5; 0: none)");
       app.add_option("--sarsa-steps", o->sarsa_steps, "SARSA steps at most (default 20,000,000, the paper's)");
       app.add_option("--scenario", o->scenario, "Scenario the crowd is made from (default assets/scenarios/kick.json)");
       app.add_option("--policy-cache", o->cache, "Folder of cached policies (default: $PREP_CACHE_DIR or ~/.cache/prep)");

@@ -23,6 +23,7 @@
 #include "engine/world/crowd.h"
 #include "engine/world/floor.h"
 #include "engine/world/frame_workers.h"
+#include "engine/world/host_pauses.h"
 #include "engine/world/policy_cache.h"
 
 namespace prep {
@@ -207,7 +208,13 @@ CrowdBenchmark benchmark_crowd(const Scenario& scenario, std::shared_ptr<const W
   fill_entry_frames(*assets, workers);
   const double fill_ms = ms_since(fill_start);
   std::vector<long> synthesized(static_cast<size_t>(threads), 0), balanced(static_cast<size_t>(threads), 0);
+  const size_t chunk = FrameWorkers::chunk_for(worlds.size(), threads);
+  // Each run's wall time, per thread, this frame (host_pauses.h: a paused run tells a frame the machine
+  // stopped from one whose work was slow). Room for every run of a frame: nothing is allocated while timing.
+  std::vector<std::vector<double>> run_ms(static_cast<size_t>(threads));
+  for (auto& r : run_ms) r.reserve(worlds.size() / chunk + 1);
   auto step_block = [&](size_t lo, size_t hi, int block, bool count) {
+    const auto run_start = Clock::now();
     long run_synthesized = 0, run_balanced = 0;  // summed here, so the threads' counters (neighbours in
     for (size_t i = lo; i < hi; ++i) {           // memory) are written once per run, not per world
       prefetch_ahead(worlds, i, hi);
@@ -220,20 +227,32 @@ CrowdBenchmark benchmark_crowd(const Scenario& scenario, std::shared_ptr<const W
     }
     synthesized[static_cast<size_t>(block)] += run_synthesized;
     balanced[static_cast<size_t>(block)] += run_balanced;
+    if (count) run_ms[static_cast<size_t>(block)].push_back(ms_since(run_start));
   };
   const std::function<void(size_t, size_t, int)> step_uncounted = [&](size_t lo, size_t hi, int b) { step_block(lo, hi, b, false); };
   const std::function<void(size_t, size_t, int)> step_counted = [&](size_t lo, size_t hi, int b) { step_block(lo, hi, b, true); };
-  const size_t chunk = FrameWorkers::chunk_for(worlds.size(), threads);
   for (int f = 0; f < warmup; ++f) workers.run_chunks(worlds.size(), chunk, step_uncounted);
   std::vector<double> frame_ms, frame_balanced;  // per frame: its time, the share of characters balanced
   frame_ms.reserve(static_cast<size_t>(std::max(frames, 0)));
   frame_balanced.reserve(static_cast<size_t>(std::max(frames, 0)));
   long balanced_so_far = 0;
+  std::vector<double> frame_runs;  // one frame's runs, all threads
+  frame_runs.reserve(worlds.size() / chunk + static_cast<size_t>(threads));
+  CrowdBenchmark b;
   const double cpu0 = cpu_ms(CLOCK_PROCESS_CPUTIME_ID);
   for (int f = 0; f < frames; ++f) {
     const auto t0 = Clock::now();
     workers.run_chunks(worlds.size(), chunk, step_counted);
     frame_ms.push_back(ms_since(t0));
+    frame_runs.clear();
+    for (auto& r : run_ms) {
+      frame_runs.insert(frame_runs.end(), r.begin(), r.end());
+      r.clear();
+    }
+    const PauseCount paused = count_pauses(frame_runs);
+    b.longest_run_ms = std::max(b.longest_run_ms, paused.longest_ms);
+    if (paused.pauses > 0) ++b.paused_frames;
+    else b.max_unpaused_ms_per_frame = std::max(b.max_unpaused_ms_per_frame, frame_ms.back());
     const long balanced_now = std::accumulate(balanced.begin(), balanced.end(), 0L);
     frame_balanced.push_back(static_cast<double>(balanced_now - balanced_so_far) / characters);
     balanced_so_far = balanced_now;
@@ -248,7 +267,6 @@ CrowdBenchmark benchmark_crowd(const Scenario& scenario, std::shared_ptr<const W
     const size_t rank = static_cast<size_t>(std::ceil(q * static_cast<double>(frame_ms.size())));
     return frame_ms[std::clamp<size_t>(rank, 1, frame_ms.size()) - 1];
   };
-  CrowdBenchmark b;
   b.characters = characters;
   b.threads = threads;
   b.frames = frames;

@@ -11,8 +11,8 @@
 //   A crowd of independent worlds, one character each (its own ball as goal and source of influence), not
 //   one world of N characters: World::step steps its characters one after another and they interact (an
 //   opponent's source is the user, the user's the closest opponent), so it cannot be split between threads
-//   without changing what it does, while independent worlds split cleanly: the worlds are cut into one
-//   contiguous block per thread, each thread steps its block, and the frame ends when both are done. Each
+//   without changing what it does, while independent worlds split cleanly: the worlds are cut into runs,
+//   each taken by whichever thread is free next, and the frame ends when every run is done. Each
 //   character's state is its own World's (a few kilobytes; reported per character from the resident
 //   memory before and after the crowd is built).
 // - Graph build time, start-up to the first synthesized frame, peak memory (getrusage).
@@ -72,6 +72,11 @@ struct CrowdBenchmark {
   double median_ms_per_frame = 0;     // the frame-time distribution: median, 99th percentile (nearest rank)
   double p99_ms_per_frame = 0;
   double max_ms_per_frame = 0;        // the slowest frame
+  // Frames in which the machine stopped a thread (host_pauses.h): a run of worlds took over kPauseMs,
+  // where runs take a millisecond or less. The slowest frame without one, and the longest run of all.
+  int paused_frames = 0;
+  double max_unpaused_ms_per_frame = 0;
+  double longest_run_ms = 0;
   // The process' CPU time per frame over all threads, divided by the threads: the frame time the cores
   // would give if nothing else ran on them (on a shared machine the wall clock also counts others' work).
   double cpu_ms_per_frame = 0;

@@ -3,9 +3,12 @@
 
 #include <doctest/doctest.h>
 
+#include <chrono>
 #include <memory>
+#include <thread>
 
 #include "engine/library/builtin.h"
+#include "engine/world/host_pauses.h"
 #include "engine/world/policy_cache.h"
 #include "tests/support/paths.h"
 
@@ -44,6 +47,12 @@ TEST_CASE("the crowd benchmark steps every character of every world, all synthes
   // share it gives the mean frame.
   CHECK(c.fit_ms_none_balanced + (c.fit_ms_all_balanced - c.fit_ms_none_balanced) * c.balanced_fraction ==
         doctest::Approx(c.ms_per_frame).epsilon(1e-9));
+  // Frames with a paused run (host_pauses.h) are set apart; the slowest of the others is among all frames.
+  CHECK(c.paused_frames >= 0);
+  CHECK(c.paused_frames <= c.frames);
+  CHECK(c.longest_run_ms > 0.0);
+  CHECK(c.max_unpaused_ms_per_frame <= c.max_ms_per_frame);
+  if (c.paused_frames == 0) CHECK(c.max_unpaused_ms_per_frame == c.max_ms_per_frame);
   CHECK(c.worst_frame_balanced_fraction >= 0.0);
   CHECK(c.worst_frame_balanced_fraction <= 1.0);
   CHECK(benchmark_crowd(s, assets, 1, 2, 3, 0, 3).threads == 1);  // never more threads than characters
@@ -81,4 +90,26 @@ TEST_CASE("peak and resident memory are read from the process") {
   CHECK(peak_memory_mb() > 1.0);
   CHECK(resident_memory_mb() > 1.0);
   CHECK(resident_memory_mb() <= peak_memory_mb() + 1.0);
+}
+
+TEST_CASE("a piece of work over the pause limit counts as a pause; the probe finds a thread stopped mid-piece") {
+  const PauseCount c = count_pauses({0.5, 25.0, 1.0, 100.0, 19.9}, 20.0);
+  CHECK(c.pauses == 2);
+  CHECK(c.longest_ms == 100.0);
+  CHECK(c.paused_ms == doctest::Approx(125.0));
+  CHECK(count_pauses({}, 20.0).pauses == 0);
+
+  // A thread put to sleep inside one piece for twice the limit: the probe sees that piece as a pause,
+  // while its other pieces take microseconds.
+  const double stop_ms = 2.0 * kPauseMs;
+  const HostPauseProbe p = probe_host_pauses(0.3, 2, [&](int thread, std::int64_t piece) {
+    if (thread == 1 && piece == 5) std::this_thread::sleep_for(std::chrono::duration<double, std::milli>(stop_ms));
+  });
+  CHECK(p.threads == 2);
+  CHECK(p.pieces > 100);
+  CHECK(p.median_piece_us > 0.0);
+  CHECK(p.median_piece_us < 1000.0);
+  CHECK(p.paused.pauses >= 1);
+  CHECK(p.paused.longest_ms >= stop_ms);
+  CHECK(p.paused.paused_ms >= stop_ms);
 }
