@@ -48,8 +48,8 @@ float fastest_level0_turn(const ActionTable& table) {
 
 constexpr float kMinApproachSpeed = 0.5f;  // m/s: the character's pace assumed when slower (control)
 constexpr float kKeptFadeSeconds = 1.0f;   // s: kept preparation's cross-fade from a target clip into walking
-constexpr float kLateFadeSeconds = 0.4f;
-constexpr float kStandingSpeed = 0.1f;     // m/s: slower than this the character has stopped (try_auto_launch)   // s: the cross-fade into an obstacle clip entered past T_t
+constexpr float kLateFadeSeconds = 0.4f;   // s: the cross-fade into an obstacle clip entered past T_t
+constexpr float kStandingSpeed = 0.1f;     // m/s: slower than this the character has stopped (try_auto_launch)
 
 }  // namespace
 
