@@ -6,7 +6,7 @@
 // CPU clock tells such a pause from work. What does is the size of the work: a piece of work that usually
 // takes a millisecond and once takes a hundred did not do a hundred times as much.
 //
-// - probe_host_pauses: a fixed piece of arithmetic (no memory, no calls, no branch on data), some 15-20 us,
+// - probe_host_pauses: a fixed piece of arithmetic (one number, no calls, no branch on data), some 15-20 us,
 //   repeated on every thread and timed; a piece that takes over kPauseMs was paused. It measures the
 //   machine alone, before a benchmark, so that a benchmark's slowest frames can be read against it.
 // - count_pauses: the same rule over a benchmark's own timed pieces (a crowd frame's runs of worlds).
