@@ -92,7 +92,7 @@ TEST_CASE("peak and resident memory are read from the process") {
   CHECK(resident_memory_mb() <= peak_memory_mb() + 1.0);
 }
 
-TEST_CASE("a piece of work over the pause limit counts as a pause; the probe finds a thread stopped mid-piece") {
+TEST_CASE("a piece of work over the pause limit counts as a pause, and the probe finds a thread stopped mid-piece") {
   const PauseCount c = count_pauses({0.5, 25.0, 1.0, 100.0, 19.9}, 20.0);
   CHECK(c.pauses == 2);
   CHECK(c.longest_ms == 100.0);
