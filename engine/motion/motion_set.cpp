@@ -271,18 +271,21 @@ int MotionSet::find(std::string_view clip_name) const {
   return -1;
 }
 
+int find_cyclic_clip(const MotionSet& set, Role role) {
+  for (size_t i = 0; i < set.clips.size(); ++i) {
+    if (set.clips[i].role == role && set.clips[i].cyclic) return static_cast<int>(i);
+  }
+  return -1;
+}
+
 void finalize_motion_set(MotionSet& set, const Params& params) {
   if (!set.skeleton) throw std::invalid_argument("motion set '" + set.name + "' has no skeleton");
   set.body = BodyMap::detect(*set.skeleton);
   set.mass = MassModel::build(*set.skeleton, set.body);
   // Characters stop on an idle clip: a set without one gets a stand held from its walk (held_stand.h).
-  const auto has = [&](Role role) {
-    return std::any_of(set.clips.begin(), set.clips.end(), [&](const MotionClip& c) { return c.role == role && c.cyclic; });
-  };
-  if (!has(Role::Idle) && has(Role::Walk)) {
-    const auto walk = std::find_if(set.clips.begin(), set.clips.end(), [](const MotionClip& c) { return c.role == Role::Walk && c.cyclic; });
-    set.clips.push_back(held_stand_from_walk(*walk, set.body));
-  }
+  const int walk = find_cyclic_clip(set, Role::Walk);
+  if (find_cyclic_clip(set, Role::Idle) < 0 && walk >= 0)
+    set.clips.push_back(held_stand_from_walk(set.clips[static_cast<size_t>(walk)], set.body));
   for (MotionClip& c : set.clips) c.contacts = detect_contacts(c.clip, set.body, params.contacts);
 }
 

@@ -85,4 +85,7 @@ std::vector<float> estimate_floor_heights(const Clip& clip, const BodyMap& body)
 // Fills the derived data (body map, mass model, contacts) of a set whose skeleton and clips are set.
 void finalize_motion_set(MotionSet& set, const Params& params);
 
+// The first cyclic clip of the set with role `role` (-1 if none).
+int find_cyclic_clip(const MotionSet& set, Role role);
+
 }  // namespace prep

@@ -95,13 +95,6 @@ PreparationRun run_preparation(const MotionSet& set, const Params& params, const
   return run;
 }
 
-int find_cyclic_clip(const MotionSet& set, Role role) {
-  for (size_t i = 0; i < set.clips.size(); ++i) {
-    if (set.clips[i].role == role && set.clips[i].cyclic) return static_cast<int>(i);
-  }
-  return -1;
-}
-
 namespace {
 
 // Leg joint positions relative to the root, turned into the root's heading frame.

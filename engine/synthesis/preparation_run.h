@@ -48,9 +48,6 @@ struct PreparationRun {
 // pose on another skeleton.
 PreparationRun run_preparation(const MotionSet& set, const Params& params, const PreparationRunOptions& options);
 
-// The first cyclic clip of the set with role `role` (-1 if none).
-int find_cyclic_clip(const MotionSet& set, Role role);
-
 // The reference posture T_p of a target clip by the scan of Sec. 4.2: from T_t back toward T_0, the first
 // frame whose COM lies inside its support polygon, whose contact pattern equals T_0's and whose leg joints
 // (relative to the root, in its heading frame) are within reference.legs_threshold (sum of squared
