@@ -211,8 +211,7 @@ void Player::pose_at(int frame, Pose& out) const {
     // smoothstep, so both positions and velocities carry over.
     thread_local Pose previous;
     pose_of(segments_[index - 1], s.blend_from + d, previous);
-    const float x = static_cast<float>(d + 1) / static_cast<float>(s.blend + 1);
-    const float w = x * x * (3.0f - 2.0f * x);
+    const float w = crossfade_weight(s, d);
     out.root_position = previous.root_position + (out.root_position - previous.root_position) * w;
     for (size_t j = 0; j < out.rotations.size(); ++j)  // glm::mix: slerp along the arc the signs give
       out.rotations[j] = glm::normalize(glm::mix(previous.rotations[j], out.rotations[j] * static_cast<float>(s.blend_sign[j]), w));
@@ -223,14 +222,53 @@ void Player::sample(float t, Pose& out) const {
   const float f = std::max(0.0f, t * fps_);
   const int i0 = static_cast<int>(std::floor(f));
   const float w = f - static_cast<float>(i0);
-  if (sample_within_segment(i0, w, out)) return;
+  if (sample_within_segment(i0, w, out, false)) return;
   thread_local Pose a, b;
   pose_at(i0, a);
   pose_at(i0 + 1, b);
   interpolate(a, b, w, out);
 }
 
-bool Player::sample_within_segment(int i0, float w, Pose& out) const {
+void Player::sample_root(float t, Pose& out) const {
+  if (segments_.empty() || out.rotations.empty()) {
+    sample(t, out);
+    return;
+  }
+  // sample()'s arithmetic for the root alone: interpolate() slerps each rotation alone or in a group of
+  // four to the same bits (slerp.h), so the root's slerp on its own is the one sample() takes.
+  const float f = std::max(0.0f, t * fps_);
+  const int i0 = static_cast<int>(std::floor(f));
+  const float w = f - static_cast<float>(i0);
+  if (sample_within_segment(i0, w, out, true)) return;
+  glm::vec3 position_a, position_b;
+  glm::quat rotation_a, rotation_b;
+  root_at(i0, position_a, rotation_a);
+  root_at(i0 + 1, position_b, rotation_b);
+  out.root_position = position_a + (position_b - position_a) * w;
+  out.rotations[0] = slerp_shorter(rotation_a, rotation_b, w);
+}
+
+void Player::root_at(int frame, glm::vec3& position, glm::quat& rotation) const {
+  // pose_at() for the root alone.
+  frame = std::clamp(frame, 0, frame_count() - 1);
+  const size_t index = segment_of(frame);
+  const Segment& s = segments_[index];
+  const int d = frame - s.stream_first;
+  const Pose& own = clip_frame(s, s.first + d);
+  position = s.placed(own.root_position);
+  rotation = s.placed(own.rotations[0]);
+  if (d < s.blend && index > 0) {
+    const Segment& before = segments_[index - 1];
+    const Pose& previous = clip_frame(before, s.blend_from + d);
+    const glm::vec3 previous_position = before.placed(previous.root_position);
+    const glm::quat previous_rotation = before.placed(previous.rotations[0]);
+    const float w = crossfade_weight(s, d);
+    position = previous_position + (position - previous_position) * w;
+    rotation = glm::normalize(glm::mix(previous_rotation, rotation * static_cast<float>(s.blend_sign[0]), w));
+  }
+}
+
+bool Player::sample_within_segment(int i0, float w, Pose& out, bool root_only) const {
   if (segments_.empty()) return false;
   const int f0 = std::clamp(i0, 0, frame_count() - 1), f1 = std::clamp(i0 + 1, 0, frame_count() - 1);
   const size_t index = segment_of(f0);
@@ -248,10 +286,10 @@ bool Player::sample_within_segment(int i0, float w, Pose& out) const {
   const glm::vec3 root_a = s.placed(a.root_position), root_b = s.placed(b.root_position);
   out.root_position = root_a + (root_b - root_a) * w;
   const size_t n = a.rotations.size();
-  out.rotations.resize(n);
+  if (!root_only) out.rotations.resize(n);
   if (n == 0) return true;
   out.rotations[0] = slerp_shorter(s.placed(a.rotations[0]), s.placed(b.rotations[0]), w);
-  slerp_shorter(a.rotations.data() + 1, b.rotations.data() + 1, w, out.rotations.data() + 1, n - 1);
+  if (!root_only) slerp_shorter(a.rotations.data() + 1, b.rotations.data() + 1, w, out.rotations.data() + 1, n - 1);
   return true;
 }
 

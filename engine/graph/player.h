@@ -49,6 +49,10 @@ class Player {
   // earlier ones read the oldest segment held (its frames before its start, clamped to the clip).
   void pose_at(int frame, Pose& out) const;
   void sample(float t, Pose& out) const;
+  // sample(t, out) of the root alone (out.root_position and out.rotations[0]); the other joints are left
+  // as they are. Only the segments' placements act on the root, so after move() this brings a pose that
+  // sample(t) gave before the move to the bits sample(t) gives after it, without slerping every joint again.
+  void sample_root(float t, Pose& out) const;
 
   // Stream frames where a switch starts and how long its blend lasts (for tests and displays).
   struct Switch {
@@ -101,7 +105,16 @@ class Player {
   size_t segment_of(int frame) const;  // the segment playing stream frame `frame` (segments_ not empty, frame >= 0)
   // sample() when stream frames i0 and i0 + 1 lie in one segment past its cross-fade, read from the clip
   // in place; false (nothing written) otherwise.
-  bool sample_within_segment(int i0, float w, Pose& out) const;
+  // With `root_only`, only out.root_position and out.rotations[0] are written (sample_root).
+  bool sample_within_segment(int i0, float w, Pose& out, bool root_only) const;
+  // pose_at(frame)'s root position and rotation, without the other joints.
+  void root_at(int frame, glm::vec3& position, glm::quat& rotation) const;
+  // A cross-fade's weight of the incoming segment `s` at its frame `d` (d < s.blend): a smoothstep, so
+  // that positions and velocities carry over.
+  static float crossfade_weight(const Segment& s, int d) {
+    const float x = static_cast<float>(d + 1) / static_cast<float>(s.blend + 1);
+    return x * x * (3.0f - 2.0f * x);
+  }
 
   const MotionGraph* graph_;
   float fps_ = 30.0f;

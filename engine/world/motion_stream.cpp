@@ -43,6 +43,7 @@ bool MotionStream::queue(int node) {
   } catch (const std::invalid_argument&) {
     return false;
   }
+  pose_sampled_ = false;  // a switch close ahead may change what the time playing reads
   const auto& switches = player_->switches();
   for (size_t k = before; k < switches.size(); ++k) {
     const GraphEdge& e = graph_->edges()[static_cast<size_t>(switches[k].edge)];
@@ -80,7 +81,13 @@ void MotionStream::switch_to(int node, glm::vec2 position, float heading) {
 
 void MotionStream::move(const FloorTransform& outer) {
   player_->move(outer);
-  sample();
+  // A move places the segments anew and nothing else: of the pose sampled at this time only the root
+  // changes (a steering correction moves most characters' streams every tick).
+  if (pose_sampled_) {
+    player_->sample_root(time_, pose_);
+  } else {
+    sample();
+  }
 }
 
 std::vector<int> MotionStream::available() const { return player_->available(); }
@@ -110,7 +117,10 @@ void MotionStream::forget_played() {
   }
 }
 
-void MotionStream::sample() { player_->sample(time_, pose_); }
+void MotionStream::sample() {
+  player_->sample(time_, pose_);
+  pose_sampled_ = true;
+}
 
 const MotionStream::Piece& MotionStream::piece_at(int stream_frame) const {
   const auto it = std::upper_bound(pieces_.begin(), pieces_.end(), stream_frame,

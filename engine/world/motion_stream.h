@@ -39,7 +39,8 @@ class MotionStream {
   // Switches to `node` now, at the frame of its loop that best matches the frame playing (the graph's
   // point-cloud distance over its window), placed where `position`/`heading` say; time restarts at 0.
   void switch_to(int node, glm::vec2 position, float heading);
-  // Moves the stream on the floor (Player::move) and samples the pose again at the current time.
+  // Moves the stream on the floor (Player::move) and brings the pose up to the current time's sample
+  // (its root; the whole pose if something was queued since it was sampled).
   void move(const FloorTransform& outer);
   // The motions queue() would accept now.
   std::vector<int> available() const;
@@ -75,6 +76,7 @@ class MotionStream {
   std::vector<Piece> pieces_;
   float time_ = 0.0f;
   Pose pose_;
+  bool pose_sampled_ = false;  // pose_ is the player's sample at time_ but for the segments' placement
 };
 
 // The floor transform that puts clip frame `frame` of `clip` at `position` facing `heading`.

@@ -162,6 +162,44 @@ TEST_CASE("player: sampling between two frames is the interpolation of the frame
   }
 }
 
+TEST_CASE("player: after a move, the root sampled again makes the pose a whole sample gives, to the bit") {
+  // A move places the segments anew; sample_root brings a pose sampled before it up to date. At every
+  // time, within a clip, across switches and in cross-fades, the result must be sample() after the move.
+  const MotionGraph g = MotionGraph::build(builtin(), Params().graph);
+  const int walk = g.find("walk"), idle = g.find("idle");
+  REQUIRE(walk >= 0);
+  REQUIRE(idle >= 0);
+  Player player(g);
+  player.start(walk, -1, FloorTransform{0.7f, glm::vec2(1.5f, -2.0f)});
+  player.push(walk);
+  player.push(idle);
+  player.push(walk);
+  int faded = 0;
+  for (const Player::Switch& s : player.switches()) faded += s.blend_frames > 0;
+  REQUIRE(faded > 0);
+  const FloorTransform outer{-0.4f, glm::vec2(0.25f, 0.6f)};
+  Pose updated, whole;
+  int root_changed = 0;
+  for (int frame = 0; frame <= player.frame_count() + 1; ++frame) {
+    for (float fraction : {0.0f, 0.3f, 0.999f}) {
+      const float t = (static_cast<float>(frame) + fraction) / player.fps();
+      CAPTURE(frame);
+      CAPTURE(fraction);
+      Player moved = player;
+      player.sample(t, updated);
+      const glm::vec3 root_before = updated.root_position;
+      moved.move(outer);
+      moved.sample_root(t, updated);
+      moved.sample(t, whole);
+      root_changed += updated.root_position != root_before;
+      REQUIRE(updated.rotations.size() == whole.rotations.size());
+      REQUIRE(std::memcmp(&updated.root_position, &whole.root_position, sizeof(glm::vec3)) == 0);
+      REQUIRE(std::memcmp(updated.rotations.data(), whole.rotations.data(), sizeof(glm::quat) * whole.rotations.size()) == 0);
+    }
+  }
+  CHECK(root_changed > 0);
+}
+
 TEST_CASE("player: letting go of what played keeps a few segments and changes no pose") {
   // Two players, the same actions: one forgets what lies behind the time sampled (as a character's stream
   // does every tick), the other keeps everything. Their poses agree to the bit at every tick, moved on the
