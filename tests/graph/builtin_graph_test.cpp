@@ -16,6 +16,30 @@ using namespace prep;
 
 namespace {
 using test::builtin;
+
+// A walk, the walk again, an idle and a walk, placed off the origin: a loop, switches and cross-fades to
+// sample across.
+Player walk_walk_idle_walk(const MotionGraph& g) {
+  const int walk = g.find("walk"), idle = g.find("idle");
+  REQUIRE(walk >= 0);
+  REQUIRE(idle >= 0);
+  Player player(g);
+  player.start(walk, -1, FloorTransform{0.7f, glm::vec2(1.5f, -2.0f)});
+  player.push(walk);
+  player.push(idle);
+  player.push(walk);
+  REQUIRE(player.switches().size() == 3);
+  int faded = 0;
+  for (const Player::Switch& s : player.switches()) faded += s.blend_frames > 0;
+  REQUIRE(faded > 0);
+  return player;
+}
+
+void require_same_bits(const Pose& a, const Pose& b) {
+  REQUIRE(a.rotations.size() == b.rotations.size());
+  REQUIRE(std::memcmp(&a.root_position, &b.root_position, sizeof(glm::vec3)) == 0);
+  REQUIRE(std::memcmp(a.rotations.data(), b.rotations.data(), sizeof(glm::quat) * a.rotations.size()) == 0);
+}
 }  // namespace
 
 TEST_CASE("motion graph: built-in library hierarchy, at least four core nodes") {
@@ -131,18 +155,7 @@ TEST_CASE("player: sampling between two frames is the interpolation of the frame
   // sample() reads a frame pair inside one clip in place; across a switch or in a cross-fade it goes
   // through pose_at. Either way it must be interpolate(pose_at(i), pose_at(i + 1), w), bit for bit.
   const MotionGraph g = MotionGraph::build(builtin(), Params().graph);
-  const int walk = g.find("walk"), idle = g.find("idle");
-  REQUIRE(walk >= 0);
-  REQUIRE(idle >= 0);
-  Player player(g);
-  player.start(walk, -1, FloorTransform{0.7f, glm::vec2(1.5f, -2.0f)});
-  player.push(walk);
-  player.push(idle);
-  player.push(walk);
-  REQUIRE(player.switches().size() == 3);
-  int faded = 0;
-  for (const Player::Switch& s : player.switches()) faded += s.blend_frames > 0;
-  CHECK(faded > 0);
+  const Player player = walk_walk_idle_walk(g);
   Pose a, b, expected, sampled;
   for (int frame = 0; frame <= player.frame_count() + 1; ++frame) {
     for (float fraction : {0.0f, 0.25f, 0.5f, 0.999f}) {
@@ -155,9 +168,7 @@ TEST_CASE("player: sampling between two frames is the interpolation of the frame
       player.pose_at(i + 1, b);
       interpolate(a, b, f - static_cast<float>(i), expected);
       player.sample(t, sampled);
-      REQUIRE(sampled.rotations.size() == expected.rotations.size());
-      REQUIRE(std::memcmp(&sampled.root_position, &expected.root_position, sizeof(glm::vec3)) == 0);
-      REQUIRE(std::memcmp(sampled.rotations.data(), expected.rotations.data(), sizeof(glm::quat) * expected.rotations.size()) == 0);
+      require_same_bits(sampled, expected);
     }
   }
 }
@@ -166,17 +177,7 @@ TEST_CASE("player: after a move, the root sampled again makes the pose a whole s
   // A move places the segments anew; sample_root brings a pose sampled before it up to date. At every
   // time, within a clip, across switches and in cross-fades, the result must be sample() after the move.
   const MotionGraph g = MotionGraph::build(builtin(), Params().graph);
-  const int walk = g.find("walk"), idle = g.find("idle");
-  REQUIRE(walk >= 0);
-  REQUIRE(idle >= 0);
-  Player player(g);
-  player.start(walk, -1, FloorTransform{0.7f, glm::vec2(1.5f, -2.0f)});
-  player.push(walk);
-  player.push(idle);
-  player.push(walk);
-  int faded = 0;
-  for (const Player::Switch& s : player.switches()) faded += s.blend_frames > 0;
-  REQUIRE(faded > 0);
+  const Player player = walk_walk_idle_walk(g);
   const FloorTransform outer{-0.4f, glm::vec2(0.25f, 0.6f)};
   Pose updated, whole;
   int root_changed = 0;
@@ -192,9 +193,7 @@ TEST_CASE("player: after a move, the root sampled again makes the pose a whole s
       moved.sample_root(t, updated);
       moved.sample(t, whole);
       root_changed += updated.root_position != root_before;
-      REQUIRE(updated.rotations.size() == whole.rotations.size());
-      REQUIRE(std::memcmp(&updated.root_position, &whole.root_position, sizeof(glm::vec3)) == 0);
-      REQUIRE(std::memcmp(updated.rotations.data(), whole.rotations.data(), sizeof(glm::quat) * whole.rotations.size()) == 0);
+      require_same_bits(updated, whole);
     }
   }
   CHECK(root_changed > 0);
@@ -233,8 +232,7 @@ TEST_CASE("player: letting go of what played keeps a few segments and changes no
     keeping.sample(t, kept);
     forgetting.sample(t, forgot);
     CAPTURE(tick);
-    REQUIRE(std::memcmp(&kept.root_position, &forgot.root_position, sizeof(glm::vec3)) == 0);
-    REQUIRE(std::memcmp(kept.rotations.data(), forgot.rotations.data(), sizeof(glm::quat) * kept.rotations.size()) == 0);
+    require_same_bits(kept, forgot);
     largest = std::max(largest, forgetting.segment_count());
     for (const Player::Switch& s : keeping.switches()) {
       const int f = static_cast<int>(std::floor(t * keeping.fps()));
