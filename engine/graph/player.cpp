@@ -104,7 +104,7 @@ void Player::follow(int edge) {
   // Each joint's cross-fade takes the shorter arc as it stands at the switch and keeps that arc for the
   // whole blend: choosing it anew each frame would jump to the other arc when two rotations about half
   // a turn apart (a crawling leg against a walking one) cross the quarter-turn mark. The two frames are
-  // read where the clips hold them (pose_of's rotations: the root placed, every other joint as recorded),
+  // read where the clips hold them (pose_at's rotations: the root placed, every other joint as recorded),
   // and the signs go into the table of a segment let go of (forget_before, start): a stream that plays on
   // allocates nothing.
   const std::vector<glm::quat>& a = clip_frame(cur, e.from_frame).rotations;
@@ -168,11 +168,6 @@ const Pose& Player::clip_frame(const Segment& s, int frame) const {
   return clip.frames[static_cast<size_t>(std::clamp(frame, 0, clip.frame_count() - 1))];
 }
 
-void Player::pose_of(const Segment& s, int frame, Pose& out) const {
-  out = clip_frame(s, frame);
-  out.root_position = s.placed(out.root_position);
-  out.rotations[0] = s.placed(out.rotations[0]);
-}
 
 size_t Player::segment_of(int frame) const {
   const auto it = std::upper_bound(segments_.begin(), segments_.end(), frame,
@@ -205,15 +200,13 @@ void Player::pose_at(int frame, Pose& out) const {
   const size_t index = segment_of(frame);
   const Segment& s = segments_[index];
   const int d = frame - s.stream_first;
-  pose_of(s, s.first + d, out);
+  out = clip_frame(s, s.first + d);
+  root_of(index, d, out.root_position, out.rotations[0]);
   if (d < s.blend && index > 0) {
-    // Cross-fade: the previous clip keeps playing past the switch while the next one fades in along a
-    // smoothstep, so both positions and velocities carry over.
-    thread_local Pose previous;
-    pose_of(segments_[index - 1], s.blend_from + d, previous);
+    // The other joints cross-fade as the root does (root_of), each as its clip records it.
+    const Pose& previous = clip_frame(segments_[index - 1], s.blend_from + d);
     const float w = crossfade_weight(s, d);
-    out.root_position = previous.root_position + (out.root_position - previous.root_position) * w;
-    for (size_t j = 0; j < out.rotations.size(); ++j)  // glm::mix: slerp along the arc the signs give
+    for (size_t j = 1; j < out.rotations.size(); ++j)  // glm::mix: slerp along the arc the signs give
       out.rotations[j] = glm::normalize(glm::mix(previous.rotations[j], out.rotations[j] * static_cast<float>(s.blend_sign[j]), w));
   }
 }
@@ -249,15 +242,19 @@ void Player::sample_root(float t, Pose& out) const {
 }
 
 void Player::root_at(int frame, glm::vec3& position, glm::quat& rotation) const {
-  // pose_at() for the root alone.
   frame = std::clamp(frame, 0, frame_count() - 1);
   const size_t index = segment_of(frame);
+  root_of(index, frame - segments_[index].stream_first, position, rotation);
+}
+
+void Player::root_of(size_t index, int d, glm::vec3& position, glm::quat& rotation) const {
   const Segment& s = segments_[index];
-  const int d = frame - s.stream_first;
   const Pose& own = clip_frame(s, s.first + d);
   position = s.placed(own.root_position);
   rotation = s.placed(own.rotations[0]);
   if (d < s.blend && index > 0) {
+    // Cross-fade: the previous clip keeps playing past the switch while the next one fades in along a
+    // smoothstep, so both positions and velocities carry over.
     const Segment& before = segments_[index - 1];
     const Pose& previous = clip_frame(before, s.blend_from + d);
     const glm::vec3 previous_position = before.placed(previous.root_position);

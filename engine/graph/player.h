@@ -100,7 +100,6 @@ class Player {
   int choose_edge(const Segment& s, const PlayerAction& action, bool* wrap_first) const;
   void follow(int edge);
   const Pose& clip_frame(const Segment& s, int frame) const;  // the clip's own frame (clamped), not placed
-  void pose_of(const Segment& s, int frame, Pose& out) const;
   void recycle_signs(size_t from, size_t to);  // segments [from, to)'s sign tables to spare_signs_
   size_t segment_of(int frame) const;  // the segment playing stream frame `frame` (segments_ not empty, frame >= 0)
   // sample() when stream frames i0 and i0 + 1 lie in one segment past its cross-fade, read from the clip
@@ -109,6 +108,9 @@ class Player {
   bool sample_within_segment(int i0, float w, Pose& out, bool root_only) const;
   // pose_at(frame)'s root position and rotation, without the other joints.
   void root_at(int frame, glm::vec3& position, glm::quat& rotation) const;
+  // The same for frame `d` of segment `index` (past its start): placed, and cross-faded from the segment
+  // before while its blend lasts.
+  void root_of(size_t index, int d, glm::vec3& position, glm::quat& rotation) const;
   // A cross-fade's weight of the incoming segment `s` at its frame `d` (d < s.blend): a smoothstep, so
   // that positions and velocities carry over.
   static float crossfade_weight(const Segment& s, int d) {
