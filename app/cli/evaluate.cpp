@@ -247,7 +247,8 @@ std::string course_text(const prep::CourseEvaluation& e) {
     << "  kept preparation min " << fixed(kept, 2) << " (" << e.kept.size() << " close pairs)  no-source alpha median "
     << fixed(e.no_source_median(), 3) << " mean " << fixed(e.no_source_mean(), 3) << "  relax max " << fixed(relax, 2) << " s ("
     << e.unrelaxed_episodes << " unrelaxed)  circling " << fixed(e.circling_seconds, 1) << " s (largest turn near a goal "
-    << fixed(e.max_visit_turn_deg, 0) << " deg)\n";
+    << fixed(e.max_visit_turn_deg, 0) << " deg)  turn reversals " << e.turn_reversals << " (most in "
+    << fixed(prep::course_metric::kWeaveWindow, 0) << " s: " << e.most_reversals_in_window << ")\n";
   return o.str();
 }
 
@@ -273,6 +274,8 @@ std::string totals_text(const prep::CourseTotals& t) {
   line("kept preparation (< 3 m)", std::to_string(t.kept_pairs) + " pairs, lowest alpha min " + fixed(t.kept_min, 2) +
                                        ", median " + fixed(t.kept_median, 2));
   line("circling", std::to_string(t.circling_courses) + " courses (" + fixed(t.circling_seconds, 1) + " s)");
+  line("weaving", std::to_string(t.weaving_courses) + " courses; turn reversals " + fixed(t.reversals_per_minute, 2) +
+                      " a minute");
   line("body inside an object > 1 cm", std::to_string(t.penetrating_courses) + " courses; deepest " +
                                            (t.min_object_what.empty() ? std::string("-") : t.min_object_what));
   line("bodies overlapping > 2 cm", std::to_string(t.overlapping_courses) + " courses; deepest " +

@@ -82,6 +82,20 @@ void NoSourceMeter::finish() {
 // ---------------------------------------------------------------------------------------------------------
 // Circling
 
+void WeavingMeter::add(float time, int turning, bool in_target) {
+  if (in_target) {
+    last_turning_ = 0;
+    return;
+  }
+  if (turning == 0) return;
+  if (last_turning_ != 0 && turning != last_turning_) {
+    reversal_times_.push_back(time);
+    while (time - reversal_times_[window_start_] > course_metric::kWeaveWindow) ++window_start_;
+    most_in_window_ = std::max(most_in_window_, static_cast<int>(reversal_times_.size() - window_start_));
+  }
+  last_turning_ = turning;
+}
+
 CirclingMeter::CirclingMeter(float dt, float heading)
     : dt_(dt), last_heading_(heading), heading_(heading),
       window_(static_cast<size_t>(std::max(1L, std::lround(course_metric::kHeadingWindow / dt))), heading),
@@ -192,6 +206,10 @@ void CourseRecorder::observe(const World& world) {
   const int target = std::clamp(passed, 0, static_cast<int>(s.goal.size()) - 1);
   circling_.add(u.position, u.heading, target, s.goal[static_cast<size_t>(target)]);
 
+  // Weaving: the turning clip playing.
+  const Role role = u.clip >= 0 ? world.assets().set->clips[static_cast<size_t>(u.clip)].role : Role::Walk;
+  weaving_.add(t, role == Role::TurnLeft ? 1 : role == Role::TurnRight ? -1 : 0, u.in_target);
+
   last_position_ = u.position;
 }
 
@@ -216,6 +234,8 @@ CourseEvaluation CourseRecorder::finish(const World& world) const {
   e.circling_seconds = circling.seconds();
   e.circling_visits = circling.visits();
   e.max_visit_turn_deg = circling.max_turn_deg();
+  e.turn_reversals = weaving_.reversals();
+  e.most_reversals_in_window = weaving_.most_in_window();
 
   const float straight = e.route_length - world.params().reward.goal_radius;
   e.path_ratio = e.reached_goal ? e.path_length / std::max(straight, 1e-3f) : kFloatNaN;
@@ -303,6 +323,7 @@ CourseTotals course_totals(const std::vector<CourseEvaluation>& courses) {
   using namespace course_metric;
   CourseTotals t;
   std::vector<float> ratios, no_source, relax, kept;
+  double reversals = 0.0, seconds = 0.0;
   for (const CourseEvaluation& e : courses) {
     ++t.courses;
     t.goals += e.reached_goal;
@@ -322,6 +343,9 @@ CourseTotals course_totals(const std::vector<CourseEvaluation>& courses) {
     t.unrelaxed_episodes += e.unrelaxed_episodes;
     if (e.circling_visits > 0) ++t.circling_courses;
     t.circling_seconds += e.circling_seconds;
+    t.weaving_courses += e.most_reversals_in_window >= course_metric::kWeaveReversals;
+    reversals += e.turn_reversals;
+    seconds += e.seconds;
     for (const KeptPreparation& k : e.kept) kept.push_back(k.min_alpha);
     t.penetrating_courses += e.clearance.object_frames > 0;
     t.overlapping_courses += e.clearance.character_frames > 0;
@@ -343,6 +367,7 @@ CourseTotals course_totals(const std::vector<CourseEvaluation>& courses) {
   t.relax_median = percentile(relax, 50.0f);
   t.relax_max = relax.empty() ? kFloatNaN : *std::max_element(relax.begin(), relax.end());
   t.kept_pairs = static_cast<int>(kept.size());
+  t.reversals_per_minute = seconds > 0.0 ? static_cast<float>(60.0 * reversals / seconds) : 0.0f;
   t.kept_min = kept.empty() ? kFloatNaN : *std::min_element(kept.begin(), kept.end());
   t.kept_median = percentile(kept, 50.0f);
 
@@ -417,6 +442,7 @@ nlohmann::json course_json(const CourseEvaluation& e) {
                     {"relax_times_s", e.relax_times},
                     {"unrelaxed_episodes", e.unrelaxed_episodes}};
   j["circling"] = {{"seconds", e.circling_seconds}, {"visits", e.circling_visits}, {"max_visit_turn_deg", e.max_visit_turn_deg}};
+  j["weaving"] = {{"turn_reversals", e.turn_reversals}, {"most_reversals_in_window", e.most_reversals_in_window}};
   j["clearance"] = clearance_json(e.clearance);
   return j;
 }
@@ -443,6 +469,8 @@ nlohmann::json course_totals_json(const CourseTotals& t) {
   j["unrelaxed_episodes"] = t.unrelaxed_episodes;
   j["circling_courses"] = t.circling_courses;
   j["circling_seconds"] = t.circling_seconds;
+  j["weaving_courses"] = t.weaving_courses;
+  j["turn_reversals_per_minute"] = t.reversals_per_minute;
   j["kept_pairs"] = t.kept_pairs;
   j["kept_min_alpha"] = number_or_null(t.kept_min);
   j["kept_median_alpha"] = number_or_null(t.kept_median);

@@ -28,6 +28,11 @@
 //   of such visits. The heading is averaged over the last kHeadingWindow seconds first: the pelvis (the
 //   root) swings its yaw a few degrees either way in every stride, some 15 degrees a second summed while
 //   walking straight, which over a long visit would add up to a circle that is not there.
+// - Weaving: the user's turning clips (role TurnLeft or TurnRight) as they play, tick by tick. A reversal
+//   is a turn clip beginning to play the other way from the last turn clip (whatever walked between; a
+//   target motion forgets the last one). A course weaves when kWeaveReversals reversals fall within
+//   kWeaveWindow seconds: left, right, left again in three seconds is a zigzag, not a route's turns.
+//   Reported, not checked.
 // - Clearance (clearance.h), every character: the frames on which a body is more than 1 cm inside an
 //   object or two bodies overlap by more than 2 cm, the nearest approach to an object and between bodies
 //   with who and what, and per launch of the user the nearest approach while its target motion played.
@@ -58,6 +63,8 @@ constexpr float kCirclingRadius = 2.0f;    // m around the current waypoint or g
 constexpr float kCirclingLeave = 3.0f;     // m: ... and ends beyond this
 constexpr float kCirclingTurnDeg = 360.0f; // a visit turning more than this is circling
 constexpr float kHeadingWindow = 1.0f;     // s: the heading is averaged over this (about a gait cycle)
+constexpr float kWeaveWindow = 3.0f;       // s: this many ...
+constexpr int kWeaveReversals = 3;         // ... reversals of the turning within kWeaveWindow are weaving
 constexpr float kRelaxSeconds = 2.5f;      // s a run goes on after the goal and the last target motion
 constexpr float kBaseSeconds = 12.0f;      // s: the longest run is this ...
 constexpr float kSecondsPerMetre = 2.5f;   // ... plus this per metre of straight route
@@ -109,6 +116,8 @@ struct CourseEvaluation {
   float circling_seconds = 0;
   int circling_visits = 0;
   float max_visit_turn_deg = 0;               // the largest turn of any visit
+  int turn_reversals = 0;                     // weaving (above)
+  int most_reversals_in_window = 0;           // the most within any kWeaveWindow
   std::vector<float> times, alpha;            // the user's smoothed alpha per observed frame
   ClearanceSummary clearance;                 // of every character (ClearanceLog)
 
@@ -162,6 +171,21 @@ class CirclingMeter {
   int visits_ = 0;
 };
 
+// The weaving measure on its own (above), fed one tick at a time: the time, and the turning clip playing
+// (+1 to the left, -1 to the right, 0 none) or a target motion.
+class WeavingMeter {
+ public:
+  void add(float time, int turning, bool in_target);
+  int reversals() const { return static_cast<int>(reversal_times_.size()); }
+  int most_in_window() const { return most_in_window_; }
+
+ private:
+  int last_turning_ = 0;
+  std::vector<float> reversal_times_;
+  size_t window_start_ = 0;  // the first reversal within kWeaveWindow of the latest
+  int most_in_window_ = 0;
+};
+
 class CourseRecorder {
  public:
   explicit CourseRecorder(const World& world);  // the world's current state is the first frame
@@ -174,6 +198,7 @@ class CourseRecorder {
   glm::vec2 last_position_{0.0f};
   NoSourceMeter no_source_;
   CirclingMeter circling_;
+  WeavingMeter weaving_;
   ClearanceLog clearance_;
 };
 
@@ -208,6 +233,8 @@ struct CourseTotals {
   int unrelaxed_episodes = 0;
   int circling_courses = 0;
   float circling_seconds = 0;
+  int weaving_courses = 0;
+  float reversals_per_minute = 0;            // turn reversals over every course's run time
   int kept_pairs = 0;
   float kept_min = 0, kept_median = 0;       // of the pairs' minima (NaN without pairs)
   // Clearance (clearance.h), reported beside the checks: the courses with a body more than 1 cm inside an

@@ -136,6 +136,31 @@ TEST_CASE("circling: an orbit round the goal turns past 360 degrees, a pass thro
   CHECK(split.visits() == 0);
 }
 
+TEST_CASE("weaving: turn clips reversing three times within 3 s weave, a route's turns a few seconds apart do not") {
+  const float dt = 1.0f / 60.0f;
+  // Plays `pattern` (+1 a left turn clip, -1 a right one, 0 a walk, 2 a target motion), each entry for
+  // `seconds`, into a meter.
+  auto play = [&](const std::vector<int>& pattern, float seconds) {
+    WeavingMeter m;
+    float t = 0.0f;
+    for (int p : pattern)
+      for (int k = 0; k < static_cast<int>(seconds / dt); ++k, t += dt) m.add(t, p == 2 ? 0 : p, p == 2);
+    return m;
+  };
+  // Left, right, left, right, a second each: three reversals in 3 s (at 1, 2 and 3 s less a tick).
+  const WeavingMeter zigzag = play({1, -1, 1, -1}, 1.0f);
+  CHECK(zigzag.reversals() == 3);
+  CHECK(zigzag.most_in_window() == course_metric::kWeaveReversals);
+  // The same turns with walks of a second between: the reversals are 2 s apart, at most two in 3 s.
+  const WeavingMeter route = play({1, 0, -1, 0, 1, 0, -1}, 1.0f);
+  CHECK(route.reversals() == 3);
+  CHECK(route.most_in_window() == 2);
+  // Turns the same way with walks between never reverse.
+  CHECK(play({1, 0, 1, 0, 1}, 1.0f).reversals() == 0);
+  // A target motion between two turns forgets the first: a right turn after a launch is no reversal.
+  CHECK(play({1, 2, -1, 0, 1}, 1.0f).reversals() == 1);
+}
+
 TEST_CASE("a straight walk to the goal: path ratio at least 1, no circling, no source, the run ends 2.5 s after") {
   const Scenario s = straight_course(8.0f);
   const CourseEvaluation e = evaluate_course(s, default_assets());
@@ -273,7 +298,18 @@ TEST_CASE("course totals: fractions, percentiles and the pass/fail checks") {
   }
   CHECK(t.path_median == doctest::Approx(1.05f));  // the unreached course has no ratio
   CHECK(t.circling_courses == 1);
+  // Weaving is reported, not checked: a course weaving and 6 reversals over the courses' 2 minutes.
+  CHECK(t.weaving_courses == 0);
+  all[0].most_reversals_in_window = course_metric::kWeaveReversals;
+  all[0].turn_reversals = 6;
+  all[0].seconds = 60.0f;
+  all[1].seconds = 60.0f;
+  t = course_totals(all);
+  CHECK(t.weaving_courses == 1);
+  CHECK(t.reversals_per_minute == doctest::Approx(3.0f));
+  REQUIRE(t.checks.size() == 6);
   const nlohmann::json j = course_totals_json(t);
+  CHECK(j["weaving_courses"] == 1);
   CHECK(j["checks"]["circling"]["pass"] == false);
   CHECK(j["checks"]["path_ratio"]["pass"] == true);
   CHECK(j["pass"] == false);
