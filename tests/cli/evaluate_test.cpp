@@ -119,9 +119,12 @@ TEST_CASE("prep evaluate --random --json: the courses, the total and a pass/fail
     CHECK(c["route_length_m"].get<double>() > 0.0);
     CHECK(c["launches"].is_array());
     CHECK(c["circling"]["seconds"].is_number());
+    CHECK(c["weaving"]["most_reversals_in_window"].get<int>() <= c["weaving"]["turn_reversals"].get<int>());
   }
   const nlohmann::json& t = j["total"];
   CHECK(t["courses"] == 2);
+  CHECK(t["weaving_courses"].get<int>() <= 2);
+  CHECK(t["turn_reversals_per_minute"].get<double>() >= 0.0);
   REQUIRE(t["checks"].is_object());
   bool all = true;
   for (const char* name : {"goal_reached", "alpha_at_launch", "alpha_at_1m", "path_ratio", "no_source_alpha", "circling"}) {
