@@ -80,7 +80,7 @@ void NoSourceMeter::finish() {
 }
 
 // ---------------------------------------------------------------------------------------------------------
-// Circling
+// Weaving
 
 void WeavingMeter::add(float time, int turning, bool in_target) {
   if (in_target) {
@@ -95,6 +95,9 @@ void WeavingMeter::add(float time, int turning, bool in_target) {
   }
   last_turning_ = turning;
 }
+
+// ---------------------------------------------------------------------------------------------------------
+// Circling
 
 CirclingMeter::CirclingMeter(float dt, float heading)
     : dt_(dt), last_heading_(heading), heading_(heading),
@@ -343,7 +346,7 @@ CourseTotals course_totals(const std::vector<CourseEvaluation>& courses) {
     t.unrelaxed_episodes += e.unrelaxed_episodes;
     if (e.circling_visits > 0) ++t.circling_courses;
     t.circling_seconds += e.circling_seconds;
-    t.weaving_courses += e.most_reversals_in_window >= course_metric::kWeaveReversals;
+    t.weaving_courses += e.most_reversals_in_window >= kWeaveReversals;
     reversals += e.turn_reversals;
     seconds += e.seconds;
     for (const KeptPreparation& k : e.kept) kept.push_back(k.min_alpha);
