@@ -79,6 +79,9 @@ World::World(const Scenario& scenario, std::shared_ptr<const WorldAssets> assets
     // walk itself: the cross-fade out of the stand slides the feet from side by side into a stride.
     const bool held = !assets_->set->clips[static_cast<size_t>(assets_->idle_node)].derived_from.empty();
     rt->stream.start(held ? find_cyclic_clip(*assets_->set, Role::Walk) : assets_->idle_node, -1, position, heading);
+    // The stream's step on the first tick is taken from where it starts, not from the origin: a restart on
+    // the second tick (the first decision, held a tick) would carry the character by that step.
+    rt->synthesis_previous_root = rt->stream.pose().root_position;
     rt->scratch = synthesizer_->make_scratch();
     runtime_.push_back(std::move(rt));
   };

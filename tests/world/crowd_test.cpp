@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <vector>
 
+#include <glm/geometric.hpp>
+
 #include "engine/util/error.h"
 #include "engine/world/policy_cache.h"
 #include "tests/support/paths.h"
@@ -136,5 +138,33 @@ TEST_CASE("crowd: the lanes' first decisions are spread over kDecisionPhases tic
   for (int i = 0; i < crowd.lanes(); ++i) {
     CAPTURE(i);
     CHECK(first_decision[static_cast<size_t>(i)] == i % Crowd::kDecisionPhases);
+  }
+}
+
+TEST_CASE("crowd: a lane whose first decision is held starts walking where it stands, whatever tick the decision comes") {
+  // A lane away from the origin (as every lane but the crowd's first is) whose first decision is held some
+  // ticks: in its first two seconds (walking) the character never moves 0.1 m in a tick (6 m/s). The stream's
+  // first step was once taken from the origin, and a decision on the second tick (held one tick) carried
+  // the character by it: metres in one tick.
+  const Stadium s;
+  Scenario away = s.lane;
+  const glm::vec2 offset(-4.0f, -9.0f);
+  for (ScenarioCharacter& c : away.characters) c.position += offset;
+  for (ScenarioObject& o : away.objects) o.position += offset;
+  for (glm::vec2& g : away.goal) g += offset;
+  for (int held = 0; held < 4; ++held) {
+    CAPTURE(held);
+    World world(away, s.assets);
+    world.set_auto(true);
+    world.hold_decisions(held);
+    glm::vec2 last = world.characters()[static_cast<size_t>(world.user())].position;
+    float largest_step = 0.0f;
+    for (int tick = 0; tick < 120; ++tick) {
+      world.step();
+      const glm::vec2 now = world.characters()[static_cast<size_t>(world.user())].position;
+      largest_step = std::max(largest_step, glm::length(now - last));
+      last = now;
+    }
+    CHECK(largest_step < 0.1f);
   }
 }
