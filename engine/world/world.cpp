@@ -50,6 +50,7 @@ constexpr float kMinApproachSpeed = 0.5f;  // m/s: the character's pace assumed 
 constexpr float kKeptFadeSeconds = 1.0f;   // s: kept preparation's cross-fade from a target clip into walking
 constexpr float kLateFadeSeconds = 0.4f;   // s: the cross-fade into an obstacle clip entered past T_t
 constexpr float kStandingSpeed = 0.1f;     // m/s: slower than this the character has stopped (try_auto_launch)
+constexpr float kTurningAction = 0.1f;     // rad: an action turning more than this in its cycle is a turn (control)
 
 }  // namespace
 
@@ -212,6 +213,15 @@ void World::control(int index) {
   // A goal just reached is stopped at now, not at the end of the action playing (up to a gait cycle on).
   if (c.control == Control::User && c.reached_goal && rt.stream.node() != assets_->idle_node)
     rt.next_decision = std::min(rt.next_decision, time_);
+  // A turn toward the goal ends once the goal's bearing has crossed to the other side: played to the end of
+  // its gait cycle it would swing the heading past the goal, and the next action would turn back (weaving).
+  if (rt.turning_toward_goal != 0 && !c.reached_goal) {
+    const std::optional<glm::vec2> goal = steering_goal(c);
+    if (goal && bearing_to(c.position, c.heading, *goal) * static_cast<float>(rt.turning_toward_goal) <= 0.0f) {
+      rt.next_decision = std::min(rt.next_decision, time_);
+      rt.turning_toward_goal = 0;
+    }
+  }
   if (decisions_held_ == 0 && time_ >= rt.next_decision && !ctl.arrived()) {
     ControlInput in;
     in.position = c.position;
@@ -230,6 +240,9 @@ void World::control(int index) {
     c.motion = d.motion;
     c.chosen_alpha = d.alpha;
     rt.next_decision = time_ + std::max(ctl.effect(d.action).duration, params_.runtime.fixed_dt);
+    const float turn = ctl.effect(d.action).turn;
+    const bool toward_goal = std::fabs(turn) > kTurningAction && turn * bearing_to(c.position, c.heading, in.goal) > 0.0f;
+    rt.turning_toward_goal = toward_goal ? (turn > 0.0f ? 1 : -1) : 0;
     // The controller acts per action (Sec. 6's actions, one gait cycle each), but the graph's edges
     // between two core clips come where the clips match, not where an action ends: waiting for one would
     // play the old motion for up to a cycle more (and turn the character past its goal). So a new core

@@ -41,6 +41,7 @@ struct World::Runtime {
   // leaves them so; displace moves the pose).
   bool kinematics_of_pose = false;
   float next_decision = 0.0f;
+  int turning_toward_goal = 0;   // the turn action playing turns toward the goal: +1 / -1 its sign, else 0
   bool reseed = false;           // the next synthesized frame continues from the current position
   glm::vec3 last_displacement{0.0f};       // the locomotion's last step (m per tick)
   glm::vec3 synthesis_previous_root{0.0f};

@@ -422,6 +422,23 @@ TEST_CASE("out of a recorded kick that ends turned, the hurdle 1.5 m on stays th
   CHECK(e.kept[0].min_alpha >= 0.5f);
 }
 
+TEST_CASE("the courses that wove (seed 777, among its first 40) walk to their goals without zigzagging") {
+  // On these twelve built-in courses the turn clips went left, right and left again within 3 s (3 to 12
+  // reversals each, 173 over the first 40 courses): a turn toward the goal played its whole gait cycle,
+  // swung the heading past the goal and the next action turned back. A turn toward the goal now ends once
+  // the goal's bearing crosses to the other side.
+  const std::vector<Scenario> first40 = make_courses(builtin_course_options(777, false), 40);
+  std::vector<Scenario> wove;
+  for (int k : {2, 10, 12, 17, 23, 24, 26, 27, 28, 32, 34, 35}) wove.push_back(first40[static_cast<size_t>(k)]);
+  const std::vector<CourseEvaluation> runs = evaluate_courses(wove, builtin_assets(), 2);
+  for (const CourseEvaluation& e : runs) {
+    CAPTURE(e.name);
+    CAPTURE(e.turn_reversals);
+    CHECK(e.reached_goal);
+    CHECK(e.most_reversals_in_window < course_metric::kWeaveReversals);
+  }
+}
+
 TEST_CASE("a ball met off to the side is turned to and kicked, not walked past") {
   // Random course 10 of seed 777: out of two hurdles the user walks toward its waypoint with the ball ahead,
   // and comes within the kick's reach of it 51 degrees off the facing, past the 45 degrees a source counts
