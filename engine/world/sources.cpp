@@ -228,6 +228,9 @@ void World::choose_source(int index) {
   const Runtime& rt = *runtime_[static_cast<size_t>(index)];
   const bool fading = rt.fade_left > 0.0f && !c.pose.rotations.empty();
   const glm::vec2 shown_fwd = fading ? forward_of(heading_of(c.pose.rotations[0])) : fwd;
+  // Inside a target clip the pelvis may face far from the way the clip goes (a duck turned sideways under
+  // its beam): the source kept is kept if it lies ahead of the heading the clip was started facing, too.
+  const glm::vec2 way_fwd = c.in_target ? forward_of(rt.launch_heading) : fwd;
   for (int k = 0; k < static_cast<int>(objects_.size()); ++k) {
     const WorldObject& o = objects_[static_cast<size_t>(k)];
     if (o.spec.type == ObjectType::Opponent || assets_->target(o.spec.action).clip < 0) continue;
@@ -268,7 +271,8 @@ void World::choose_source(int index) {
     }
     // Behind: not in the facing direction.
     if (!kept && glm::dot(d, fwd) <= 0.0f) continue;
-    if (kept && std::max(glm::dot(d, fwd), glm::dot(d, shown_fwd)) <= std::cos(kSourceKeptAngle) * glm::length(d)) continue;
+    if (kept && std::max({glm::dot(d, fwd), glm::dot(d, shown_fwd), glm::dot(d, way_fwd)}) <= std::cos(kSourceKeptAngle) * glm::length(d))
+      continue;
     if (distance < best) {
       best = distance;
       c.has_source = true;

@@ -329,6 +329,7 @@ bool World::start_target(int index, TargetAction action, int object, int target_
     if (glm::length(facing) > 1e-4f) heading = std::atan2(facing.x, facing.y);
   }
   rt.stream.start(t.clip, entry, c.position, heading);
+  rt.launch_heading = heading;
   const int walk = find_cyclic_clip(*assets_->set, Role::Walk);
   bool queued = walk >= 0 && rt.stream.queue(walk);
   for (size_t k = 0; !queued && k < assets_->core_nodes.size(); ++k) queued = rt.stream.queue(assets_->core_nodes[k]);

@@ -62,6 +62,9 @@ struct World::Runtime {
   glm::vec2 aim{0.0f};
   float aim_seconds = 0.0f, aim_elapsed = 0.0f;
   ObstacleFit fit;               // the obstacle clip playing, fitted to its obstacle (obstacle_fit.h)
+  // The heading the target clip playing was started facing (World::start_target): its way on, where the
+  // pelvis of a clip may swing far from it (a duck turned sideways under its beam).
+  float launch_heading = 0.0f;
   // The source as last seen (for its speed toward the character and to notice a change of source).
   int source_key = -2;           // object index, or -(character index) - 3, or -2 for none
   glm::vec2 source_position{0.0f};

@@ -439,6 +439,37 @@ TEST_CASE("the courses that wove (seed 777, among its first 40) walk to their go
   }
 }
 
+TEST_CASE("a recorded duck whose pelvis turns 80 degrees keeps the hurdle behind its beam as the source, and jumps it prepared") {
+  // Random course 75 of seed 1 on cmu31: a hurdle 1.6 m beyond a beam. The recorded duck goes straight
+  // under the beam but its pelvis turns up to 80 degrees, and the hurdle fell out of the source's kept
+  // angle: the duck ended with nothing ahead, alpha dropped to 0, and the jump launched unprepared out of a
+  // turn beside the board, a knee 1.5 cm into it. The source is now also kept ahead of the heading the clip
+  // was started facing.
+  const Scenario shipped = load_scenario(test::repo() + "/assets/scenarios/jump_cmu31.json");
+  const auto assets = prepare_world_assets(shipped, load_scenario_params(shipped), test::tmp_dir() + "/policy-cache");
+  CourseOptions o;
+  o.seed = 1;
+  o.motions = shipped.motions;
+  o.params_file = shipped.params_file;
+  o.actions = actions_of(*assets);
+  o.reach = reaches_of(*assets);
+  o.heights = heights_of(*assets);
+  const Scenario course = make_courses(o, 76)[75];
+  REQUIRE(course.objects.size() == 4);
+  REQUIRE(course.objects[2].action == TargetAction::Duck);
+  REQUIRE(course.objects[3].action == TargetAction::Jump);
+  const CourseEvaluation e = evaluate_courses({course}, assets, 1)[0];
+  INFO(e.clearance.min_object_what);
+  CHECK(e.reached_goal);
+  REQUIRE(e.launches.size() == 4);
+  for (const CourseLaunch& l : e.launches) {
+    CAPTURE(l.time);
+    CHECK(l.alpha_at_launch >= 0.85f);
+  }
+  CHECK(e.launches[3].object == 3);
+  CHECK(e.clearance.object_frames == 0);
+}
+
 TEST_CASE("a ball met off to the side is turned to and kicked, not walked past") {
   // Random course 10 of seed 777: out of two hurdles the user walks toward its waypoint with the ball ahead,
   // and comes within the kick's reach of it 51 degrees off the facing, past the 45 degrees a source counts
