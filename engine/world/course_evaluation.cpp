@@ -403,6 +403,11 @@ CourseTotals course_totals(const std::vector<CourseEvaluation>& courses) {
                       std::to_string(t.circling_courses) + " courses circling (" + number(t.circling_seconds, 1) +
                           " s); needed none",
                       t.circling_courses == 0});
+  t.checks.push_back({"weaving",
+                      std::to_string(t.weaving_courses) + " courses weaving (" + number(t.reversals_per_minute, 1) +
+                          " turn reversals a minute); needed <= " + std::to_string(kWeavePercent) + "% of " +
+                          std::to_string(t.courses),
+                      t.courses > 0 && 100 * t.weaving_courses <= kWeavePercent * t.courses});
   return t;
 }
 

@@ -31,8 +31,8 @@
 // - Weaving: the user's turning clips (role TurnLeft or TurnRight) as they play, tick by tick. A reversal
 //   is a turn clip beginning to play the other way from the last turn clip (whatever walked between; a
 //   target motion forgets the last one). A course weaves when kWeaveReversals reversals fall within
-//   kWeaveWindow seconds: left, right, left again in three seconds is a zigzag, not a route's turns.
-//   Reported, not checked.
+//   kWeaveWindow seconds: left, right, left again in three seconds is a zigzag, not a route's turns. At
+//   most kWeavePercent of the courses may weave.
 // - Clearance (clearance.h), every character: the frames on which a body is more than 1 cm inside an
 //   object or two bodies overlap by more than 2 cm, the nearest approach to an object and between bodies
 //   with who and what, and per launch of the user the nearest approach while its target motion played.
@@ -65,6 +65,7 @@ constexpr float kCirclingTurnDeg = 360.0f; // a visit turning more than this is 
 constexpr float kHeadingWindow = 1.0f;     // s: the heading is averaged over this (about a gait cycle)
 constexpr int kWeaveReversals = 3;         // this many reversals of the turning ...
 constexpr float kWeaveWindow = 3.0f;       // ... within this many seconds are weaving
+constexpr int kWeavePercent = 2;           // acceptance: at most this percentage of the courses weaving
 constexpr float kRelaxSeconds = 2.5f;      // s a run goes on after the goal and the last target motion
 constexpr float kBaseSeconds = 12.0f;      // s: the longest run is this ...
 constexpr float kSecondsPerMetre = 2.5f;   // ... plus this per metre of straight route

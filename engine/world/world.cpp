@@ -214,8 +214,9 @@ void World::control(int index) {
   if (c.control == Control::User && c.reached_goal && rt.stream.node() != assets_->idle_node)
     rt.next_decision = std::min(rt.next_decision, time_);
   // A turn toward the goal ends once the goal's bearing has crossed to the other side: played to the end of
-  // its gait cycle it would swing the heading past the goal, and the next action would turn back (weaving).
-  if (rt.turning_toward_goal != 0 && !c.reached_goal) {
+  // its gait cycle it would swing the heading past the goal, and the next action would turn back (weaving;
+  // RuntimeParams::end_turn_at_goal_bearing).
+  if (rt.turning_toward_goal != 0 && !c.reached_goal && params_.runtime.end_turn_at_goal_bearing) {
     const std::optional<glm::vec2> goal = steering_goal(c);
     if (goal && bearing_to(c.position, c.heading, *goal) * static_cast<float>(rt.turning_toward_goal) <= 0.0f) {
       rt.next_decision = std::min(rt.next_decision, time_);

@@ -127,14 +127,14 @@ TEST_CASE("prep evaluate --random --json: the courses, the total and a pass/fail
   CHECK(t["turn_reversals_per_minute"].get<double>() >= 0.0);
   REQUIRE(t["checks"].is_object());
   bool all = true;
-  for (const char* name : {"goal_reached", "alpha_at_launch", "alpha_at_1m", "path_ratio", "no_source_alpha", "circling"}) {
+  for (const char* name : {"goal_reached", "alpha_at_launch", "alpha_at_1m", "path_ratio", "no_source_alpha", "circling", "weaving"}) {
     CAPTURE(name);
     REQUIRE(t["checks"].contains(name));
     CHECK(t["checks"][name]["pass"].is_boolean());
     CHECK(t["checks"][name]["measure"].is_string());
     all = all && t["checks"][name]["pass"].get<bool>();
   }
-  CHECK(t["checks"].size() == 6);
+  CHECK(t["checks"].size() == 7);
   CHECK(t["pass"] == all);
 }
 

@@ -160,6 +160,7 @@ TEST_CASE("the switches off restore the paper's behaviour: at the goal the last 
   paper.runtime.tight_turn_deg_per_s = 0.0f;
   paper.runtime.waypoint_pass_radius = 0.0f;
   paper.runtime.anticipate_closing = false;
+  paper.runtime.end_turn_at_goal_bearing = false;
   const Scenario s = load_scenario(test::repo() + "/assets/scenarios/obstacles.json");
   World relaxed(s, builtin_assets()), as_paper(s, builtin_assets());
   as_paper.set_params(paper);

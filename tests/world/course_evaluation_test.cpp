@@ -281,7 +281,7 @@ TEST_CASE("course totals: fractions, percentiles and the pass/fail checks") {
   CHECK(t.path_median == doctest::Approx(1.05f));
   CHECK(t.no_source_median == doctest::Approx(0.0f));
   CHECK(t.no_source_mean == doctest::Approx(0.1f / 6.0f));
-  REQUIRE(t.checks.size() == 6);
+  REQUIRE(t.checks.size() == 7);
   CHECK(t.pass());
 
   // One course short of its goal, one launch unprepared, one circling: those checks fail, the others pass.
@@ -298,7 +298,8 @@ TEST_CASE("course totals: fractions, percentiles and the pass/fail checks") {
   }
   CHECK(t.path_median == doctest::Approx(1.05f));  // the unreached course has no ratio
   CHECK(t.circling_courses == 1);
-  // Weaving is reported, not checked: a course weaving and 6 reversals over the courses' 2 minutes.
+  // Weaving: a course weaving and 6 reversals over the courses' 2 minutes. One of three courses is more than
+  // the 2% allowed; two of a hundred are not, three are.
   CHECK(t.weaving_courses == 0);
   all[0].most_reversals_in_window = course_metric::kWeaveReversals;
   all[0].turn_reversals = 6;
@@ -307,9 +308,19 @@ TEST_CASE("course totals: fractions, percentiles and the pass/fail checks") {
   t = course_totals(all);
   CHECK(t.weaving_courses == 1);
   CHECK(t.reversals_per_minute == doctest::Approx(3.0f));
-  REQUIRE(t.checks.size() == 6);
+  REQUIRE(t.checks.size() == 7);
+  CHECK(t.checks[6].name == "weaving");
+  CHECK_FALSE(t.checks[6].pass);
+  std::vector<CourseEvaluation> hundred(100, all[1]);
+  hundred[0] = hundred[1] = all[0];
+  const CourseTotals two_in_a_hundred = course_totals(hundred);
+  CHECK(two_in_a_hundred.weaving_courses == 2);
+  CHECK(two_in_a_hundred.checks[6].pass);
+  hundred[2] = all[0];
+  CHECK_FALSE(course_totals(hundred).checks[6].pass);
   const nlohmann::json j = course_totals_json(t);
   CHECK(j["weaving_courses"] == 1);
+  CHECK(j["checks"]["weaving"]["pass"] == false);
   CHECK(j["checks"]["circling"]["pass"] == false);
   CHECK(j["checks"]["path_ratio"]["pass"] == true);
   CHECK(j["pass"] == false);
