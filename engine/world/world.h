@@ -7,10 +7,11 @@
 //   alpha -> the motion stream plays m through the motion graph -> Synthesizer::step (blend toward the T_p of
 //   the action the source calls for, trajectory, foot IK, balance) -> pose.
 //
-// Where each part lives: world.cpp the tick (control, launches, kept preparation, steering, goals);
+// Where each part lives: world.cpp the tick (control, launches, kept preparation, goals); world_steering.cpp
+// where each character makes for and its tight turns and squaring up (the geometry in steering.h);
 // sources.cpp the sources of influence, launch points, the approach and the arrival; target_motions.cpp the
-// assets (T_p, reach, release and advance of each target clip); summary.cpp the run summaries; steering.h
-// the tight turns and squaring up; bodies.cpp the obstacle fit of a pose and characters kept apart.
+// assets (T_p, reach, release and advance of each target clip); summary.cpp the run summaries; bodies.cpp
+// the obstacle fit of a pose and characters kept apart.
 //
 // Choices where the paper leaves it open (each also stated where it is coded):
 // - The source point the controller sees is the launch point of the object: where the character must
