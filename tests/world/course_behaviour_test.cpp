@@ -47,6 +47,29 @@ Scenario builtin_random_course(std::uint64_t seed, int k) {
   return make_courses(builtin_course_options(seed, false), k + 1)[static_cast<size_t>(k)];
 }
 
+// Course k of a seed on one of our CMU sets (its manifest, its controller Params), with the set's assets, as
+// `prep evaluate --random N --seed S --motions assets/manifests/SET.json` draws it.
+struct SetCourse {
+  std::shared_ptr<const WorldAssets> assets;
+  Scenario course;
+};
+SetCourse set_random_course(const std::string& set, std::uint64_t seed, int k) {
+  Scenario probe;
+  probe.motions = test::repo() + "/assets/manifests/" + set + ".json";
+  probe.params_file = test::repo() + "/assets/scenarios/controller_" + set + ".json";
+  SetCourse r;
+  r.assets = prepare_world_assets(probe, load_scenario_params(probe), test::tmp_dir() + "/policy-cache");
+  CourseOptions options;
+  options.seed = seed;
+  options.motions = probe.motions;
+  options.params_file = probe.params_file;
+  options.actions = actions_of(*r.assets);
+  options.reach = reaches_of(*r.assets);
+  options.heights = heights_of(*r.assets);
+  r.course = make_courses(options, k + 1)[static_cast<size_t>(k)];
+  return r;
+}
+
 Scenario course(const std::vector<std::string>& objects, float goal_z) {
   std::string list;
   for (const std::string& o : objects) list += (list.empty() ? "" : ", ") + o;
@@ -396,18 +419,7 @@ TEST_CASE("out of a recorded kick that ends turned, the hurdle 1.5 m on stays th
   // it is left for (kept preparation) is placed by the floor alignment of the two clips and faces 27 degrees
   // farther off, so the hurdle fell just past the kept source's 120 degrees for 0.3 s: nothing was in range,
   // alpha relaxed from 1.0 to 0.21 and rose again. Through the cross-fade the body shown still faces it.
-  Scenario probe;
-  probe.motions = test::repo() + "/assets/manifests/daz43.json";
-  probe.params_file = test::repo() + "/assets/scenarios/controller_daz43.json";
-  const auto assets = prepare_world_assets(probe, load_scenario_params(probe), test::tmp_dir() + "/policy-cache");
-  CourseOptions options;
-  options.seed = 1;
-  options.motions = probe.motions;
-  options.params_file = probe.params_file;
-  options.actions = actions_of(*assets);
-  options.reach = reaches_of(*assets);
-  options.heights = heights_of(*assets);
-  const Scenario course = make_courses(options, 75)[74];
+  const auto [assets, course] = set_random_course("daz43", 1, 74);
   REQUIRE(course.objects.size() == 3);
   REQUIRE(course.objects[0].type == ObjectType::Ball);
   REQUIRE(course.objects[1].type == ObjectType::Hurdle);
@@ -446,16 +458,7 @@ TEST_CASE("a recorded duck whose pelvis turns 80 degrees keeps the hurdle behind
   // angle: the duck ended with nothing ahead, alpha dropped to 0, and the jump launched unprepared out of a
   // turn beside the board, a knee 1.5 cm into it. The source is now also kept ahead of the heading the clip
   // was started facing.
-  const Scenario shipped = load_scenario(test::repo() + "/assets/scenarios/jump_cmu31.json");
-  const auto assets = prepare_world_assets(shipped, load_scenario_params(shipped), test::tmp_dir() + "/policy-cache");
-  CourseOptions o;
-  o.seed = 1;
-  o.motions = shipped.motions;
-  o.params_file = shipped.params_file;
-  o.actions = actions_of(*assets);
-  o.reach = reaches_of(*assets);
-  o.heights = heights_of(*assets);
-  const Scenario course = make_courses(o, 76)[75];
+  const auto [assets, course] = set_random_course("cmu31", 1, 75);
   REQUIRE(course.objects.size() == 4);
   REQUIRE(course.objects[2].action == TargetAction::Duck);
   REQUIRE(course.objects[3].action == TargetAction::Jump);
