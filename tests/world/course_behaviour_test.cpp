@@ -49,15 +49,15 @@ Scenario builtin_random_course(std::uint64_t seed, int k) {
 
 // Course k of a seed on one of our CMU sets (its manifest, its controller Params), with the set's assets, as
 // `prep evaluate --random N --seed S --motions assets/manifests/SET.json` draws it.
-struct SetCourse {
+struct CourseOfSet {
   std::shared_ptr<const WorldAssets> assets;
   Scenario course;
 };
-SetCourse set_random_course(const std::string& set, std::uint64_t seed, int k) {
+CourseOfSet set_random_course(const std::string& set, std::uint64_t seed, int k) {
   Scenario probe;
   probe.motions = test::repo() + "/assets/manifests/" + set + ".json";
   probe.params_file = test::repo() + "/assets/scenarios/controller_" + set + ".json";
-  SetCourse r;
+  CourseOfSet r;
   r.assets = prepare_world_assets(probe, load_scenario_params(probe), test::tmp_dir() + "/policy-cache");
   CourseOptions options;
   options.seed = seed;
