@@ -168,7 +168,6 @@ const Pose& Player::clip_frame(const Segment& s, int frame) const {
   return clip.frames[static_cast<size_t>(std::clamp(frame, 0, clip.frame_count() - 1))];
 }
 
-
 size_t Player::segment_of(int frame) const {
   const auto it = std::upper_bound(segments_.begin(), segments_.end(), frame,
                                    [](int f, const Segment& s) { return f < s.stream_first; });

@@ -201,8 +201,6 @@ void World::step() {
   stage_times_.total_ms = ms_between(step_start, stage_now());
 }
 
-
-
 // The controller: a decision per action (its duration in the action table; none while arriving), and the
 // motion stream kept one motion ahead.
 void World::control(int index) {
@@ -421,8 +419,6 @@ void World::try_auto_launch(int index) {
   if (start_target(index, c.prepared_for, c.source_object, c.source_character, true) && c.control == Control::Opponent)
     c.last_attack = time_;
 }
-
-
 
 // Two characters walking to strike each other make for each other's launch point, until that is near:
 // steered to a point at its feet a character would swing from side to side, so from there it makes for
