@@ -103,8 +103,10 @@ ControlDecision Controller::decide(const ControlInput& in) {
   b.d_i = states_.d_i_bin(s.d_i);
   b.theta_i = states_.theta_i_bin(s.theta_i);
   d.state = states_.index(b);
-  // Greedy over the actions Next(last motion) allows (lowest index on ties, as in training).
-  const std::uint64_t allowed = actions_.allowed_mask(motion_);
+  // Greedy over the actions Next(last motion) allows and the caller has not ruled out (lowest index on ties,
+  // as in training).
+  const std::uint64_t next = actions_.allowed_mask(motion_);
+  const std::uint64_t allowed = (next & ~in.ruled_out) != 0 ? next & ~in.ruled_out : next;
   const float* row = policy_->row(d.state);
   int best = -1;
   for (int a = 0; a < actions_.size(); ++a)

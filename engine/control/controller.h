@@ -23,6 +23,7 @@
 // curve and hands out the one for a target's curve.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -60,6 +61,9 @@ struct ControlInput {
   float heading = 0.0f;  // the character faces (sin h, 0, cos h)
   glm::vec2 goal{0.0f};
   glm::vec2 source{0.0f};
+  // Actions the caller's run-time rules rule out (bit a: action a), on top of those Next(m) does not allow.
+  // Ignored when it would leave no action.
+  std::uint64_t ruled_out = 0;
 };
 
 struct ControlDecision {

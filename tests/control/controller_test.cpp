@@ -1,6 +1,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <memory>
 #include <random>
 #include <vector>
@@ -157,4 +158,34 @@ TEST_CASE("at run time the state's alpha is forced to 1 within the source radius
   c.reset(0, 0);
   CHECK_FALSE(c.arrived());
   CHECK(c.tick() == doctest::Approx(0.0));
+}
+
+TEST_CASE("actions the caller rules out are passed over for the best of the rest, unless none would be left") {
+  const Params params;
+  const auto world = test::hand_made_world(params);
+  const StateSpace states(params.quantization, world.table.motions);
+  const ActionSpace actions(states.motions(), states.alpha_levels());
+  // Every state ranks (motion 1, level 2) first, (motion 0, level 3) second.
+  std::vector<float> q(static_cast<size_t>(states.size()) * static_cast<size_t>(actions.size()), 0.0f);
+  const int first = actions.index({1, 2}), second = actions.index({0, 3});
+  for (int s = 0; s < states.size(); ++s) {
+    q[static_cast<size_t>(s) * actions.size() + static_cast<size_t>(first)] = 2.0f;
+    q[static_cast<size_t>(s) * actions.size() + static_cast<size_t>(second)] = 1.0f;
+  }
+  Controller c(test::hand_made_policy(params, world, q), params);
+  ControlInput in;
+  in.goal = {0.0f, 5.0f};
+  in.source = {0.0f, 3.0f};
+  c.reset(0, 0);
+  CHECK(c.decide(in).action == first);
+  c.reset(0, 0);
+  in.ruled_out = std::uint64_t{1} << first;
+  const ControlDecision d = c.decide(in);
+  CHECK(d.action == second);
+  CHECK(d.motion == 0);
+  CHECK(d.alpha_level == 3);
+  // Everything ruled out: the rule is set aside and the greedy action stands.
+  c.reset(0, 0);
+  in.ruled_out = ~std::uint64_t{0};
+  CHECK(c.decide(in).action == first);
 }
