@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <stdexcept>
 
@@ -50,6 +51,19 @@ constexpr float kKeptFadeSeconds = 1.0f;   // s: kept preparation's cross-fade f
 constexpr float kLateFadeSeconds = 0.4f;   // s: the cross-fade into an obstacle clip entered past T_t
 constexpr float kStandingSpeed = 0.1f;     // m/s: slower than this the character has stopped (try_auto_launch)
 constexpr float kTurningAction = 0.1f;     // rad: an action turning more than this in its cycle is a turn (control)
+
+// The turn actions (more than kTurningAction in their cycle) that would leave a point at `bearing`
+// (bearing_to) further off the facing than it is: those away from it, and those toward it that swing past
+// it by more than it is off now (its bearing less than half the turn). A point dead ahead is left further
+// off by every turn.
+std::uint64_t turns_off(const ActionTable& table, float bearing) {
+  std::uint64_t ruled_out = 0;
+  for (size_t a = 0; a < table.effects.size() && a < 64; ++a) {
+    const float turn = table.effects[a].turn;  // the heading's change: the bearing after it is bearing - turn
+    if (std::fabs(turn) > kTurningAction && !(std::fabs(bearing - turn) < std::fabs(bearing))) ruled_out |= std::uint64_t{1} << a;
+  }
+  return ruled_out;
+}
 
 }  // namespace
 
@@ -234,6 +248,11 @@ void World::control(int index) {
       const float own = std::max(rt.speed, kMinApproachSpeed);
       in.source = c.position + (in.source - c.position) * (own / (own + rt.source_closing_speed));
     }
+    // A source ahead is not turned away from (RuntimeParams::keep_source_ahead): a turn is ruled out when it
+    // would leave both the source and the goal further off the facing (a goal steered elsewhere is turned to).
+    if (params_.runtime.keep_source_ahead && c.source_in_range && c.source_ahead)
+      in.ruled_out = turns_off(ctl.policy().table, bearing_to(c.position, c.heading, in.source)) &
+                     turns_off(ctl.policy().table, bearing_to(c.position, c.heading, in.goal));
     const ControlDecision d = ctl.decide(in);
     c.motion = d.motion;
     c.chosen_alpha = d.alpha;

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <memory>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -184,6 +185,7 @@ TEST_CASE("the switches off restore the paper's behaviour: at the goal the last 
   paper.runtime.waypoint_pass_radius = 0.0f;
   paper.runtime.anticipate_closing = false;
   paper.runtime.end_turn_at_goal_bearing = false;
+  paper.runtime.keep_source_ahead = false;
   const Scenario s = load_scenario(test::repo() + "/assets/scenarios/obstacles.json");
   World relaxed(s, builtin_assets()), as_paper(s, builtin_assets());
   as_paper.set_params(paper);
@@ -532,4 +534,55 @@ TEST_CASE("on a set with no idle clip the user stops at its goal and stands ther
   const WorldCharacter& u = world.characters()[static_cast<size_t>(world.user())];
   CHECK(glm::length(u.position - one_second_on) < 0.05f);  // three seconds standing
   CHECK(glm::length(u.position - s.goal.back()) <= world.params().reward.goal_radius + 0.3f);
+}
+
+TEST_CASE("a source straight ahead is walked up to, not swung out from and back") {
+  // Balls, hurdles, bars and beams 4-7 m ahead, up to 0.3 m to either side, the character starting up to
+  // 15 degrees off them. The policy values a turn away from a source dead ahead within a few per cent of
+  // walking on; chosen, its gait cycle swung the approach out past 45 degrees and back (10 of these 12
+  // without RuntimeParams::keep_source_ahead), and a turn toward a source a few degrees off overshot it
+  // as far.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  const char* kinds[] = {R"("type": "ball", "action": "kick", "size": [0.22, 0.22, 0.22])",
+                         R"("type": "hurdle", "action": "jump", "size": [1.2, 0.45, 0.1])",
+                         R"("type": "bar", "action": "crawl", "size": [1.6, 0.6, 0.1])",
+                         R"("type": "beam", "action": "duck", "size": [1.6, 1.2, 0.1])"};
+  for (int k = 0; k < 12; ++k) {
+    const float ahead = 4.0f + 3.0f * unit(rng), side = 0.6f * unit(rng) - 0.3f, heading_deg = 30.0f * unit(rng) - 15.0f;
+    const bool ball = k % 4 == 0;
+    const std::string text = R"({"auto": true, "characters": [{"position": [0, 0], "heading": )" + std::to_string(heading_deg) +
+                             R"(, "control": "user"}], "objects": [{)" + kinds[k % 4] + R"(, "position": [)" +
+                             std::to_string(side) + ", " + std::to_string(ahead) + R"(]}], "goal": [)" + std::to_string(side) +
+                             ", " + std::to_string(ahead + (ball ? 0.0f : 2.0f)) + "]}";
+    World world(parse_scenario(text, "straight ahead"), builtin_assets());
+    const glm::vec2 object(side, ahead);
+    float widest = 0.0f;  // the object's largest bearing off the facing, until a metre short of it
+    for (int tick = 0; tick < 20 * 60 && world.launches().empty(); ++tick) {
+      world.step();
+      const WorldCharacter& c = world.characters()[static_cast<size_t>(world.user())];
+      if (object.y - c.position.y > 1.0f) widest = std::max(widest, std::fabs(bearing_to(c.position, c.heading, object)));
+    }
+    CAPTURE(text);
+    CHECK(widest * 180.0f / kPi <= std::fabs(heading_deg) + 30.0f);
+    REQUIRE(world.launches().size() == 1);
+    CHECK(world.launches()[0].alpha_at_launch >= 0.85f);
+  }
+}
+
+TEST_CASE("a goal steered to the side is turned to, though a source lies straight ahead") {
+  // A ball 3 m ahead and the goal 6 m to the right (a user steering away from it): the turns toward the
+  // goal take the ball off the facing, and are still chosen (only a turn that leaves both the source and
+  // the goal further off is passed over).
+  const Scenario s = parse_scenario(
+      R"({"characters": [{"position": [0, 0], "heading": 0, "control": "user"}],
+          "objects": [{"type": "ball", "action": "kick", "size": [0.22, 0.22, 0.22], "position": [0, 3]}],
+          "goal": [-6, 1]})",
+      "goal to the side");
+  World world(s, builtin_assets());
+  run(world, 3.0f);
+  const WorldCharacter& c = world.characters()[static_cast<size_t>(world.user())];
+  CHECK(std::fabs(bearing_to(c.position, c.heading, {-6.0f, 1.0f})) * 180.0f / kPi < 30.0f);
+  run(world, 6.0f);
+  CHECK(world.goal_reached());
 }
