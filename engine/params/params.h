@@ -195,9 +195,10 @@ struct RuntimeParams {
   // degrees off the goal swings the heading past it into the next bin of theta_g, whose action turns back:
   // on a quarter of 200 random built-in courses the turns went left, right, left within 3 s (weaving).
   bool end_turn_at_goal_bearing = true;
-  // A source ahead is not turned away from: while one lies within 45 degrees of the facing and in range,
-  // the controller passes over the turn actions that would leave both it and the goal further off the
-  // facing than they are (a turn away, or one toward that swings past by more than they are off). The
+  // A source ahead is not turned away from: while the source lies within 45 degrees of the facing (within
+  // preparation_range or beyond it), the controller passes over the turn actions that would leave both it
+  // and the goal further off the facing than they are (a turn away, or one toward that swings past by more
+  // than they are off). The
   // policy values a turn away from a source dead ahead within a few per cent of walking on (built-in kick,
   // 4 m: Q 1.26 for turn_right against 1.20 for walk), and played, the turn's gait cycle swings the
   // approach out and back: the built-in kick scenario walked an S of -70 to +57 degrees on its way to the

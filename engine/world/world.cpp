@@ -250,7 +250,7 @@ void World::control(int index) {
     }
     // A source ahead is not turned away from (RuntimeParams::keep_source_ahead): a turn is ruled out when it
     // would leave both the source and the goal further off the facing (a goal steered elsewhere is turned to).
-    if (params_.runtime.keep_source_ahead && c.source_in_range && c.source_ahead)
+    if (params_.runtime.keep_source_ahead && c.has_source && c.source_ahead)
       in.ruled_out = turns_off(ctl.policy().table, bearing_to(c.position, c.heading, in.source)) &
                      turns_off(ctl.policy().table, bearing_to(c.position, c.heading, in.goal));
     const ControlDecision d = ctl.decide(in);

@@ -586,3 +586,18 @@ TEST_CASE("a goal steered to the side is turned to, though a source lies straigh
   run(world, 6.0f);
   CHECK(world.goal_reached());
 }
+
+TEST_CASE("the fight's user walks straight up to the opponent 9 m ahead, not out and back") {
+  // The first opponent is beyond RuntimeParams::preparation_range at the start, but it is the source and
+  // lies ahead: a turn away from it is passed over there too. Before, the user turned 78 degrees off to the
+  // right and back in its first 4 s.
+  World world(load_scenario(test::repo() + "/assets/scenarios/fight.json"), builtin_assets());
+  float widest = 0.0f;
+  while (world.time() < 20.0f && launch_of(world, TargetAction::PunchRight) == nullptr) {
+    world.step();
+    const WorldCharacter& c = world.characters()[static_cast<size_t>(world.user())];
+    if (!c.in_target) widest = std::max(widest, std::fabs(c.heading));
+  }
+  REQUIRE(launch_of(world, TargetAction::PunchRight) != nullptr);
+  CHECK(widest * 180.0f / kPi < 20.0f);
+}
