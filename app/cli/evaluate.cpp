@@ -276,6 +276,8 @@ std::string totals_text(const prep::CourseTotals& t) {
   line("circling", std::to_string(t.circling_courses) + " courses (" + fixed(t.circling_seconds, 1) + " s)");
   line("weaving", std::to_string(t.weaving_courses) + " courses; turn reversals " + fixed(t.reversals_per_minute, 2) +
                       " a minute");
+  line("swerving", std::to_string(t.swerving_approaches) + "/" + std::to_string(t.approaches) + " approaches swung more than " +
+                       fixed(prep::course_metric::kSwerveDeg, 0) + " degrees off their source");
   line("body inside an object > 1 cm", std::to_string(t.penetrating_courses) + " courses; deepest " +
                                            (t.min_object_what.empty() ? std::string("-") : t.min_object_what));
   line("bodies overlapping > 2 cm", std::to_string(t.overlapping_courses) + " courses; deepest " +

@@ -14,6 +14,7 @@
 
 #include "engine/world/courses.h"
 #include "engine/world/floor.h"
+#include "engine/world/steering.h"
 
 namespace prep {
 
@@ -94,6 +95,29 @@ void WeavingMeter::add(float time, int turning, bool in_target) {
     most_in_window_ = std::max(most_in_window_, static_cast<int>(reversal_times_.size() - window_start_));
   }
   last_turning_ = turning;
+}
+
+void SwerveMeter::add(int source, glm::vec2 launch_point, float to_launch, glm::vec2 position, float heading) {
+  if (source != source_) {
+    finish();
+    source_ = source;
+  }
+  if (source < 0) return;
+  const float off = std::fabs(bearing_to(position, heading, launch_point)) * 180.0f / kPi;
+  if (!ahead_) {
+    ahead_ = off <= course_metric::kSwerveAheadDeg;
+    return;
+  }
+  if (!(to_launch > course_metric::kSwerveNear)) return;
+  widest_deg_ = std::max(widest_deg_, off);
+  swerved_ = swerved_ || off > course_metric::kSwerveDeg;
+}
+
+void SwerveMeter::finish() {
+  approaches_ += ahead_;
+  swerves_ += swerved_;
+  source_ = -1;
+  ahead_ = swerved_ = false;
 }
 
 // ---------------------------------------------------------------------------------------------------------
@@ -213,6 +237,13 @@ void CourseRecorder::observe(const World& world) {
   const Role role = u.clip >= 0 ? world.assets().set->clips[static_cast<size_t>(u.clip)].role : Role::Walk;
   weaving_.add(t, role == Role::TurnLeft ? 1 : role == Role::TurnRight ? -1 : 0, u.in_target);
 
+  // Swerving: the source and how far off the facing its launch point is.
+  const int source = !u.has_source || u.in_target ? -1
+                     : u.source_object >= 0      ? u.source_object
+                     : u.source_character >= 0   ? static_cast<int>(world.objects().size()) + u.source_character
+                                                 : -1;
+  swerve_.add(source, u.source, u.to_launch, u.position, u.heading);
+
   last_position_ = u.position;
 }
 
@@ -239,6 +270,11 @@ CourseEvaluation CourseRecorder::finish(const World& world) const {
   e.max_visit_turn_deg = circling.max_turn_deg();
   e.turn_reversals = weaving_.reversals();
   e.most_reversals_in_window = weaving_.most_in_window();
+  SwerveMeter swerve = swerve_;
+  swerve.finish();
+  e.approaches = swerve.approaches();
+  e.swerving_approaches = swerve.swerves();
+  e.widest_approach_deg = swerve.widest_deg();
 
   const float straight = e.route_length - world.params().reward.goal_radius;
   e.path_ratio = e.reached_goal ? e.path_length / std::max(straight, 1e-3f) : kFloatNaN;
@@ -347,6 +383,8 @@ CourseTotals course_totals(const std::vector<CourseEvaluation>& courses) {
     if (e.circling_visits > 0) ++t.circling_courses;
     t.circling_seconds += e.circling_seconds;
     t.weaving_courses += e.most_reversals_in_window >= kWeaveReversals;
+    t.approaches += e.approaches;
+    t.swerving_approaches += e.swerving_approaches;
     reversals += e.turn_reversals;
     seconds += e.seconds;
     for (const KeptPreparation& k : e.kept) kept.push_back(k.min_alpha);
@@ -451,6 +489,7 @@ nlohmann::json course_json(const CourseEvaluation& e) {
                     {"unrelaxed_episodes", e.unrelaxed_episodes}};
   j["circling"] = {{"seconds", e.circling_seconds}, {"visits", e.circling_visits}, {"max_visit_turn_deg", e.max_visit_turn_deg}};
   j["weaving"] = {{"turn_reversals", e.turn_reversals}, {"most_reversals_in_window", e.most_reversals_in_window}};
+  j["swerving"] = {{"approaches", e.approaches}, {"swerving", e.swerving_approaches}, {"widest_deg", e.widest_approach_deg}};
   j["clearance"] = clearance_json(e.clearance);
   return j;
 }
@@ -479,6 +518,8 @@ nlohmann::json course_totals_json(const CourseTotals& t) {
   j["circling_seconds"] = t.circling_seconds;
   j["weaving_courses"] = t.weaving_courses;
   j["turn_reversals_per_minute"] = t.reversals_per_minute;
+  j["approaches"] = t.approaches;
+  j["swerving_approaches"] = t.swerving_approaches;
   j["kept_pairs"] = t.kept_pairs;
   j["kept_min_alpha"] = number_or_null(t.kept_min);
   j["kept_median_alpha"] = number_or_null(t.kept_median);

@@ -33,6 +33,11 @@
 //   target motion forgets the last one). A course weaves when kWeaveReversals reversals fall within
 //   kWeaveWindow seconds: left, right, left again in three seconds is a zigzag, not a route's turns. At
 //   most kWeavePercent of the courses may weave.
+// - Swerving (reported beside the checks): an approach is the run of ticks with one source (object or
+//   opponent) while the user is not in a target motion; it counts once the source has come within
+//   kSwerveAheadDeg of the facing. It swerves when the source's launch point (WorldCharacter::source) is
+//   then more than kSwerveDeg off the facing while the point is still more than kSwerveNear ahead along the
+//   approach: the character swung out from a source it was walking up to.
 // - Clearance (clearance.h), every character: the frames on which a body is more than 1 cm inside an
 //   object or two bodies overlap by more than 2 cm, the nearest approach to an object and between bodies
 //   with who and what, and per launch of the user the nearest approach while its target motion played.
@@ -66,6 +71,9 @@ constexpr float kHeadingWindow = 1.0f;     // s: the heading is averaged over th
 constexpr int kWeaveReversals = 3;         // this many reversals of the turning ...
 constexpr float kWeaveWindow = 3.0f;       // ... within this many seconds are weaving
 constexpr int kWeavePercent = 2;           // acceptance: at most this percentage of the courses weaving
+constexpr float kSwerveAheadDeg = 45.0f;   // an approach counts once its source is within this of the facing
+constexpr float kSwerveDeg = 60.0f;        // it swerves when the source is then more than this off ...
+constexpr float kSwerveNear = 1.0f;        // m: ... while its launch point is farther than this along the approach
 constexpr float kRelaxSeconds = 2.5f;      // s a run goes on after the goal and the last target motion
 constexpr float kBaseSeconds = 12.0f;      // s: the longest run is this ...
 constexpr float kSecondsPerMetre = 2.5f;   // ... plus this per metre of straight route
@@ -119,6 +127,8 @@ struct CourseEvaluation {
   float max_visit_turn_deg = 0;               // the largest turn of any visit
   int turn_reversals = 0;                     // weaving (above)
   int most_reversals_in_window = 0;           // the most within any kWeaveWindow
+  int approaches = 0, swerving_approaches = 0;  // swerving (above)
+  float widest_approach_deg = 0;              // the largest bearing of a source after it came ahead
   std::vector<float> times, alpha;            // the user's smoothed alpha per observed frame
   ClearanceSummary clearance;                 // of every character (ClearanceLog)
 
@@ -187,6 +197,24 @@ class WeavingMeter {
   int most_in_window_ = 0;
 };
 
+// The swerving measure on its own (above), fed one tick at a time: which source the user has (-1: none, or
+// in a target motion), where its launch point is and how far along the approach, and the user's position
+// and heading (radians, as the world gives it).
+class SwerveMeter {
+ public:
+  void add(int source, glm::vec2 launch_point, float to_launch, glm::vec2 position, float heading);
+  void finish();  // ends the approach under way
+  int approaches() const { return approaches_; }
+  int swerves() const { return swerves_; }
+  float widest_deg() const { return widest_deg_; }
+
+ private:
+  int source_ = -1;
+  bool ahead_ = false, swerved_ = false;  // of the approach under way
+  int approaches_ = 0, swerves_ = 0;
+  float widest_deg_ = 0;
+};
+
 class CourseRecorder {
  public:
   explicit CourseRecorder(const World& world);  // the world's current state is the first frame
@@ -200,6 +228,7 @@ class CourseRecorder {
   NoSourceMeter no_source_;
   CirclingMeter circling_;
   WeavingMeter weaving_;
+  SwerveMeter swerve_;
   ClearanceLog clearance_;
 };
 
@@ -236,6 +265,7 @@ struct CourseTotals {
   float circling_seconds = 0;
   int weaving_courses = 0;
   float reversals_per_minute = 0;            // turn reversals over every course's run time
+  int approaches = 0, swerving_approaches = 0;  // swerving, reported beside the checks
   int kept_pairs = 0;
   float kept_min = 0, kept_median = 0;       // of the pairs' minima (NaN without pairs)
   // Clearance (clearance.h), reported beside the checks: the courses with a body more than 1 cm inside an

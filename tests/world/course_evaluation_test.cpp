@@ -161,6 +161,29 @@ TEST_CASE("weaving: turn clips reversing three times within 3 s weave, a route's
   CHECK(play({1, 2, -1, 0, 1}, 1.0f).reversals() == 1);
 }
 
+TEST_CASE("swerving: a source once ahead and then more than 60 degrees off before its last metre swerves") {
+  // The user at the origin; the source's launch point 4 m away at `deg` off the facing (+Z), `to_launch`
+  // along the approach.
+  auto tick = [](SwerveMeter& m, int source, float deg, float to_launch) {
+    const float a = deg * 3.14159265f / 180.0f;
+    m.add(source, 4.0f * glm::vec2(std::sin(a), std::cos(a)), to_launch, glm::vec2(0.0f), 0.0f);
+  };
+  SwerveMeter m;
+  tick(m, 0, 10.0f, 4.0f);   // source 0 comes ahead: an approach
+  tick(m, 0, 70.0f, 3.0f);   // swung 70 degrees off 3 m out: a swerve
+  tick(m, 0, 20.0f, 2.0f);
+  tick(m, 1, 90.0f, 4.0f);   // source 1 beside, never ahead: no approach, whatever it does
+  tick(m, 1, 120.0f, 3.0f);
+  tick(m, 2, 30.0f, 3.0f);   // source 2 ahead ...
+  tick(m, 2, 80.0f, 0.8f);   // ... and 80 degrees off within its last metre (squaring up): no swerve
+  tick(m, -1, 0.0f, 0.0f);   // none (a target motion)
+  tick(m, 2, 5.0f, 3.0f);    // source 2 again after it: a new approach
+  m.finish();
+  CHECK(m.approaches() == 3);
+  CHECK(m.swerves() == 1);
+  CHECK(m.widest_deg() == doctest::Approx(70.0f).epsilon(1e-3));
+}
+
 TEST_CASE("a straight walk to the goal: path ratio at least 1, no circling, no source, the run ends 2.5 s after") {
   const Scenario s = straight_course(8.0f);
   const CourseEvaluation e = evaluate_course(s, default_assets());
