@@ -198,11 +198,11 @@ struct RuntimeParams {
   // A source ahead is not turned away from: while the source lies within 45 degrees of the facing (within
   // preparation_range or beyond it), the controller passes over the turn actions that would leave both it
   // and the goal further off the facing than they are (a turn away, or one toward that swings past by more
-  // than they are off). The
-  // policy values a turn away from a source dead ahead within a few per cent of walking on (built-in kick,
-  // 4 m: Q 1.26 for turn_right against 1.20 for walk), and played, the turn's gait cycle swings the
-  // approach out and back: the built-in kick scenario walked an S of -70 to +57 degrees on its way to the
-  // ball straight ahead, and 10 of 12 such approaches in the tests swung out past 45 degrees.
+  // than they are off). The policy values a turn away from a source dead ahead within a few per cent of
+  // walking on (built-in kick, 4 m: Q 1.26 for turn_right against 1.20 for walk), and played, the turn's
+  // gait cycle swings the approach out and back: the built-in kick scenario walked an S of -70 to +57
+  // degrees on its way to the ball straight ahead, and 10 of 12 such approaches in the tests swung out past
+  // 45 degrees.
   bool keep_source_ahead = true;
   // Bodies kept out of obstacles: a body that has gone into an obstacle it is not crossing with a target
   // motion (a leg swung into a hurdle's board by a turn just after it, a head walked into a rail) is set
