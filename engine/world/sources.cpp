@@ -78,9 +78,11 @@ glm::vec2 World::launch_point(int index, int obstacle) const {
 
 // The character's own lateral place, kept kSpanMargin inside the ends; if the obstacle's clip launched there
 // would run into another obstacle before it may be left (two obstacles close together and at an angle, the
-// gap between them narrowing toward one end), the nearest place along the span that leaves it room. A
-// person lines up where the gap is wide enough to come up in. Where no place has room, the one with the
-// most.
+// gap between them narrowing toward one end), or the next obstacle's clip could not follow on out of it
+// without being slid back through this one, the nearest place along the span that leaves room for both. A
+// person lines up where the gap is wide enough to come up in. Where no place has room for both, the nearest
+// with room for the clip's body, else the one with the most: a walk along the span for a follow-on that
+// lacks room everywhere would gain nothing.
 float World::launch_lateral(int index, int obstacle) const {
   const WorldCharacter& c = characters_[static_cast<size_t>(index)];
   Runtime& rt = *runtime_[static_cast<size_t>(index)];
@@ -97,16 +99,30 @@ float World::launch_lateral(int index, int obstacle) const {
     rt.room_obstacle = obstacle;
     rt.room_from_front = from_front;
     rt.room_short.resize(static_cast<size_t>(samples));
-    for (int k = 0; k < samples; ++k) rt.room_short[static_cast<size_t>(k)] = launch_room_short(obstacle, o.spec.action, n, at(k));
+    rt.follow_short.resize(static_cast<size_t>(samples));
+    for (int k = 0; k < samples; ++k) {
+      const RoomShort r = launch_room_short(obstacle, o.spec.action, n, at(k));
+      rt.room_short[static_cast<size_t>(k)] = r.body;
+      rt.follow_short[static_cast<size_t>(k)] = r.follow;
+    }
   }
   const int nearest = std::clamp(static_cast<int>(std::lround((own + span) / kLateralStep)), 0, samples - 1);
+  const auto room_for_both = [&](int k) {
+    return rt.room_short[static_cast<size_t>(k)] <= 0.0f && rt.follow_short[static_cast<size_t>(k)] <= 0.0f;
+  };
   rt.room_moved = false;
-  if (rt.room_short[static_cast<size_t>(nearest)] <= 0.0f) return own;
-  int best = nearest;
-  for (int k = 0; k < samples; ++k) {
-    const float shortfall = std::max(rt.room_short[static_cast<size_t>(k)], 0.0f);
-    const float best_shortfall = std::max(rt.room_short[static_cast<size_t>(best)], 0.0f);
-    if (shortfall < best_shortfall || (shortfall == best_shortfall && std::fabs(at(k) - own) < std::fabs(at(best) - own))) best = k;
+  if (room_for_both(nearest)) return own;
+  int best = -1;
+  for (int k = 0; k < samples; ++k)
+    if (room_for_both(k) && (best < 0 || std::fabs(at(k) - own) < std::fabs(at(best) - own))) best = k;
+  if (best < 0) {
+    if (rt.room_short[static_cast<size_t>(nearest)] <= 0.0f) return own;
+    best = nearest;
+    for (int k = 0; k < samples; ++k) {
+      const float shortfall = std::max(rt.room_short[static_cast<size_t>(k)], 0.0f);
+      const float best_shortfall = std::max(rt.room_short[static_cast<size_t>(best)], 0.0f);
+      if (shortfall < best_shortfall || (shortfall == best_shortfall && std::fabs(at(k) - own) < std::fabs(at(best) - own))) best = k;
+    }
   }
   rt.room_moved = best != nearest;
   return best == nearest ? own : at(best);
@@ -115,14 +131,17 @@ float World::launch_lateral(int index, int obstacle) const {
 // How much room (m) the clip of `action`, launched at the obstacle along `n` at `lateral` from its middle,
 // lacks before the solids of the other unused across obstacles beyond: its body (BodyReach, up to the frame
 // the clip may be left, as wide as it reaches either side of its line) comes within kRoomMargin of one by
-// this much. <= 0: it has room. The body's width is followed along parallel lines kBodyLineSpacing apart;
-// each solid is widened by half that, so that a narrow one (a hurdle's foot) cannot fall between two lines.
-float World::launch_room_short(int obstacle, TargetAction action, glm::vec2 n, float lateral) const {
-  float shortfall = -std::numeric_limits<float>::infinity();
+// this much (RoomShort::body). <= 0: it has room. The body's width is followed along parallel lines
+// kBodyLineSpacing apart; each solid is widened by half that, so that a narrow one (a hurdle's foot) cannot
+// fall between two lines. RoomShort::follow: how much farther than its late entry covers the next
+// obstacle's clip would be slid back, started at this clip's release frame.
+World::RoomShort World::launch_room_short(int obstacle, TargetAction action, glm::vec2 n, float lateral) const {
+  RoomShort room{-std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity()};
   const BodyReach& body = assets_->body_reaches[static_cast<size_t>(action)];
-  if (body.z.empty()) return shortfall;
+  if (body.z.empty()) return room;
   const WorldObject& o = objects_[static_cast<size_t>(obstacle)];
-  const float reach = assets_->target(action).reach;
+  const TargetMotion& target = assets_->target(action);
+  const float reach = target.reach;
   const float body_farthest = *std::max_element(body.z.begin(), body.z.end());
   const glm::vec2 along = left_of(o.spec.heading);
   for (size_t k = 0; k < objects_.size(); ++k) {
@@ -139,7 +158,8 @@ float World::launch_room_short(int obstacle, TargetAction action, glm::vec2 n, f
       const glm::vec2 root = floor_xz(o.position) + (lateral + side) * along - reach * n;
       const float z_at_axis = glm::dot(p2 - root, n2) / cosine;
       const float x_at_axis = glm::dot(root + z_at_axis * n - p2, along2);
-      if (line == lines / 2 && z_at_axis > reach && z_at_axis - assets_->target(next.spec.action).reach < body_farthest) {
+      const TargetMotion& follow = assets_->target(next.spec.action);
+      if (line == lines / 2 && z_at_axis > reach && z_at_axis - follow.reach < body_farthest) {
         // `next` is so close that its launch point lies within this clip's body, and the root's own line
         // meets it outside the part a launch is made from (kSpanMargin inside its ends), within its width
         // or beside its end where it is still in the way (kBesideEnd): its action could not follow straight
@@ -147,7 +167,15 @@ float World::launch_room_short(int obstacle, TargetAction action, glm::vec2 n, f
         // it can. Short by as much as the line is outside.
         const float half = 0.5f * next.spec.size.x, usable = std::max(half - kSpanMargin, 0.0f);
         const float outside = std::fabs(x_at_axis) - usable;
-        if (outside > 0.0f && std::fabs(x_at_axis) < half + kBesideEnd) shortfall = std::max(shortfall, outside);
+        if (outside > 0.0f && std::fabs(x_at_axis) < half + kBesideEnd) room.body = std::max(room.body, outside);
+        // Within it, `next`'s clip follows on at this clip's release, entered as far on as the root has come
+        // past its launch point. A clip that covers little ground before its body nears its obstacle (a crawl
+        // kneels where it stands) cannot make up more than that: the rest would be slid back, out of the
+        // landing and through the obstacle just crossed. Short by what the late entry cannot take.
+        if (target.release_frame >= 0 && !follow.advance.empty()) {
+          const float past = target.release_advance - (z_at_axis - follow.reach);
+          room.follow = std::max(room.follow, past - follow.advance.back());
+        }
       }
       for (const ObjectSolid& solid : solids_[k]) {
         if (std::fabs(x_at_axis - solid.centre.x) > 0.5f * (solid.extents.x + spacing)) continue;
@@ -157,11 +185,11 @@ float World::launch_room_short(int obstacle, TargetAction action, glm::vec2 n, f
         const float near = std::min(z0, z1);
         if (near <= reach) continue;  // on this side of the obstacle crossed: not what the clip runs into
         const float y0 = solid.centre.y - 0.5f * solid.extents.y, y1 = solid.centre.y + 0.5f * solid.extents.y;
-        shortfall = std::max(shortfall, body.over(y0, y1) + kRoomMargin - near);
+        room.body = std::max(room.body, body.over(y0, y1) + kRoomMargin - near);
       }
     }
   }
-  return shortfall;
+  return room;
 }
 
 // Sec. 7.2: the source of influence. User: the closest opponent still fighting (fight), else the closest

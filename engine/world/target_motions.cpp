@@ -315,6 +315,8 @@ WorldAssets make_world_assets(std::shared_ptr<const MotionSet> set, const Params
     t.reach = glm::dot(q, forward_of(h));
     t.lateral = glm::dot(q, left_of(h));
     t.release_frame = release_frame_of(*set, mc, t.action, t.reference_frame, meets, peak_frame);
+    if (t.release_frame >= 0)
+      t.release_advance = glm::dot(floor_xz(mc.clip.frames[static_cast<size_t>(t.release_frame)].root_position) - origin, forward_of(h));
     const Strike strike = strike_of(*set, volumes, mc, t.action, peak_frame);
     if (strike.frame >= 0) {
       t.strike_frame = strike.frame;

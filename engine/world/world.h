@@ -52,7 +52,8 @@
 //   turns the character; one standing still off square launches, the rest of the turn in the cross-fade),
 //   and the clip is slid onto the obstacle (short of, past or beside its launch point) before the body
 //   reaches it, then fitted to its height (obstacle_fit.h); the launch lines up along the obstacle where
-//   its clip has room before the next obstacle (launch_lateral), and out of a previous clip, within a
+//   its clip has room before the next obstacle, and the next obstacle's clip room to follow on out of it
+//   (launch_lateral), and out of a previous clip, within a
 //   metre of the next launch point, the character squares up to it already (steering.h); a kick's wind-up is slid onto the ball; an
 //   obstacle the way to the goal crosses near its end is a source, walked along to; a body that gets into
 //   an obstacle anyway is set back out of it (RuntimeParams::keep_clear). Opponents hold short of striking
@@ -118,6 +119,9 @@ struct TargetMotion {
   // strike has landed): from here the character may leave the clip for prepared locomotion when another
   // source is near (world.h, "kept preparation"). -1: the clip always plays to its graph edge.
   int release_frame = -1;
+  // m: how far the root has come along the T_p facing at release_frame: where, out of this clip, the root
+  // stands when the next obstacle's clip may start (launch_room_short).
+  float release_advance = 0.0f;
   // m: how far the root has come along the T_p facing at each frame from T_p to last_entry_frame (T_t, or
   // for an obstacle clip the frame its fit begins to fade in; advance[0] = 0 at T_p). A character that
   // reaches an obstacle already past its launch point (out of the previous target clip, between two close
@@ -453,7 +457,13 @@ class World {
   // the character launches at it: its own, kept kSpanMargin inside the ends and off the places with too
   // little room beyond for the clip (launch_room_short).
   float launch_lateral(int index, int obstacle) const;
-  float launch_room_short(int obstacle, TargetAction action, glm::vec2 n, float lateral) const;
+  // How much room (m) a launch at `lateral` lacks beyond the obstacle (<= 0: enough): `body` for the clip's
+  // own body before the next obstacle, `follow` for the next obstacle's clip to follow on out of it without
+  // being slid back.
+  struct RoomShort {
+    float body = 0.0f, follow = 0.0f;
+  };
+  RoomShort launch_room_short(int obstacle, TargetAction action, glm::vec2 n, float lateral) const;
   // The approach to the character's source (set by choose_source): the distance still to go to its launch
   // point along the approach (< 0: past it; infinite without a source) and whether the source lies ahead.
   struct Approach {

@@ -360,6 +360,42 @@ TEST_CASE("two obstacles at an angle whose gap narrows below a crawl's length: t
   }
 }
 
+TEST_CASE("a bar close beyond a hurdle, at any angle: the crawl follows the jump without being slid back through the hurdle") {
+  // Generated pairs: a hurdle 5 m ahead turned up to 15 degrees, a bar 1.1-1.7 m beyond it, up to 0.8 m to
+  // either side and turned up to 30 degrees from it; the user starts up to 1.5 m to either side. The crawl
+  // covers almost no ground before it kneels, so it cannot be entered late: out of a jump launched where the
+  // bar is too near, it was slid back up to 0.9 m, through the hurdle just jumped (a leg up to 10 cm in its
+  // board). The jump lines up where the crawl has room to follow on.
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f), gap(1.1f, 1.7f);
+  std::vector<Scenario> courses;
+  for (int k = 0; k < 16; ++k) {
+    const float hurdle_heading = 15.0f * unit(rng), turn = 30.0f * unit(rng), beyond = gap(rng), aside = 0.8f * unit(rng);
+    const float start_x = 1.5f * unit(rng);
+    const float h = hurdle_heading * kPi / 180.0f, b = (hurdle_heading + turn) * kPi / 180.0f;
+    const float bar_x = beyond * std::sin(h) + aside * std::cos(h), bar_z = 5.0f + beyond * std::cos(h) - aside * std::sin(h);
+    char text[640];
+    std::snprintf(text, sizeof text,
+                  "{\"auto\": true, \"name\": \"pair %d\", \"characters\": [{\"control\": \"user\", \"position\": [%.3f, 0]}], "
+                  "\"objects\": [{\"type\": \"hurdle\", \"position\": [0, 5], \"heading\": %.2f, \"size\": [5.0, 0.45, 0.1]}, "
+                  "{\"type\": \"bar\", \"position\": [%.3f, %.3f], \"heading\": %.2f, \"size\": [5.0, 0.7, 0.1]}], "
+                  "\"goal\": [%.3f, %.3f]}",
+                  k, start_x, hurdle_heading, bar_x, bar_z, hurdle_heading + turn, bar_x + 4.0f * std::sin(b),
+                  bar_z + 4.0f * std::cos(b));
+    courses.push_back(parse_scenario(text, "hurdle and bar"));
+  }
+  const std::vector<CourseEvaluation> runs = evaluate_courses(courses, builtin_assets(), 2);
+  for (const CourseEvaluation& e : runs) {
+    INFO(e.name << ": " << e.clearance.min_object_what);
+    CHECK(e.reached_goal);
+    REQUIRE(e.launches.size() == 2);
+    CHECK(e.launches[0].action == TargetAction::Jump);
+    CHECK(e.launches[1].action == TargetAction::Crawl);
+    CHECK(e.launches[1].slide_forward > -0.2f);
+    CHECK(e.clearance.object_frames == 0);
+  }
+}
+
 TEST_CASE("the next obstacle close beyond the crawl: its end clear of the hands, its usable span lined up with") {
   // A hurdle 1.6 m beyond a bar and 0.9 m to one side, so that its end (its foot on the floor) lies where the
   // crawl's hands reach, 0.2-0.4 m to the side of the body's middle line; and a beam 1.03 m high 1.6 m beyond
