@@ -198,6 +198,7 @@ World::RoomShort World::launch_room_short(int obstacle, TargetAction action, glm
 // Opponents: the user's character.
 void World::choose_source(int index) {
   WorldCharacter& c = characters_[static_cast<size_t>(index)];
+  const glm::vec2 last_launch = c.source;  // the last tick's source's launch point
   c.has_source = false;
   c.source_object = c.source_character = -1;
   const glm::vec2 fwd = forward_of(c.heading);
@@ -299,7 +300,12 @@ void World::choose_source(int index) {
     }
     // Behind: not in the facing direction.
     if (!kept && glm::dot(d, fwd) <= 0.0f) continue;
-    if (kept && std::max({glm::dot(d, fwd), glm::dot(d, shown_fwd), glm::dot(d, way_fwd)}) <= std::cos(kSourceKeptAngle) * glm::length(d))
+    // Walked along to a launch place away from its middle (launch_lateral), an obstacle's middle falls
+    // behind while its launch point still lies ahead: the launch point counts too.
+    const glm::vec2 to_launch = last_launch - c.position;
+    const bool launch_ahead = kept && is_across(o.spec.type) && glm::dot(to_launch, fwd) > std::cos(kSourceKeptAngle) * glm::length(to_launch);
+    if (kept && !launch_ahead &&
+        std::max({glm::dot(d, fwd), glm::dot(d, shown_fwd), glm::dot(d, way_fwd)}) <= std::cos(kSourceKeptAngle) * glm::length(d))
       continue;
     if (distance < best) {
       best = distance;

@@ -396,6 +396,34 @@ TEST_CASE("a bar close beyond a hurdle, at any angle: the crawl follows the jump
   }
 }
 
+TEST_CASE("walked along a bar to a launch place away from its middle, the bar stays the source and is crawled prepared") {
+  // A generated course and its mirror image: a hurdle, a bar 1.4 m beyond it turned 10 degrees, and a second
+  // bar 1.3 m beyond that. Out of the jump the crawl's body has no room before the second bar where the
+  // character lands, so it walks along the first bar, sideways, to where it has. Its middle then fell more
+  // than 120 degrees off the facing: the bar was dropped as the source, the played alpha fell to 0, and the
+  // bar, found again at its launch point, was crawled at alpha 0.54 (0.67 in the mirror).
+  const char* text =
+      "{\"auto\": true, \"name\": \"%s\", \"characters\": [{\"control\": \"user\", \"position\": [%.3f, 0]}], "
+      "\"objects\": [{\"type\": \"hurdle\", \"position\": [%.3f, 4.5], \"heading\": %.3f, \"size\": [5.0, 0.45, 0.1]}, "
+      "{\"type\": \"bar\", \"position\": [%.3f, 5.850], \"heading\": %.3f, \"size\": [5.0, 0.7, 0.1]}, "
+      "{\"type\": \"bar\", \"position\": [%.3f, 7.197], \"heading\": %.3f, \"size\": [5.0, 0.7, 0.1]}], \"goal\": [%.3f, 11.129]}";
+  std::vector<Scenario> courses;
+  for (const float mirror : {1.0f, -1.0f}) {
+    char json[720];
+    std::snprintf(json, sizeof json, text, mirror > 0.0f ? "as drawn" : "mirrored", mirror * 0.382f, mirror * 0.040f,
+                  mirror * -5.244f, mirror * -0.557f, mirror * -15.790f, mirror * -0.446f, mirror * -10.558f, mirror * -1.179f);
+    courses.push_back(parse_scenario(json, "walk along"));
+  }
+  for (const CourseEvaluation& e : evaluate_courses(courses, builtin_assets(), 2)) {
+    INFO(e.name);
+    CHECK(e.reached_goal);
+    REQUIRE(e.launches.size() == 3);
+    CHECK(e.launches[0].action == TargetAction::Jump);
+    CHECK(e.launches[1].action == TargetAction::Crawl);
+    CHECK(e.launches[1].alpha_at_launch >= 0.85f);
+  }
+}
+
 TEST_CASE("the next obstacle close beyond the crawl: its end clear of the hands, its usable span lined up with") {
   // A hurdle 1.6 m beyond a bar and 0.9 m to one side, so that its end (its foot on the floor) lies where the
   // crawl's hands reach, 0.2-0.4 m to the side of the body's middle line; and a beam 1.03 m high 1.6 m beyond
