@@ -364,8 +364,8 @@ TEST_CASE("a bar close beyond a hurdle, at any angle: the crawl follows the jump
   // Generated pairs: a hurdle 5 m ahead turned up to 15 degrees, a bar 1.1-1.7 m beyond it, up to 0.8 m to
   // either side and turned up to 30 degrees from it; the user starts up to 1.5 m to either side. The crawl
   // covers almost no ground before it kneels, so it cannot be entered late: out of a jump launched where the
-  // bar is too near, it was slid back up to 0.9 m, through the hurdle just jumped (a leg up to 10 cm in its
-  // board). The jump lines up where the crawl has room to follow on.
+  // bar is too near, it was slid back (half a metre in a third of a second in one case), through the hurdle
+  // just jumped (a leg up to 10 cm in its board). The jump lines up where the crawl has room to follow on.
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> unit(-1.0f, 1.0f), gap(1.1f, 1.7f);
   std::vector<Scenario> courses;
