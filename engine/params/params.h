@@ -208,7 +208,8 @@ struct RuntimeParams {
   // the waypoint or goal it makes for, as a player steering with the keys would, and kicks it. The policy
   // is rewarded for the goal alone (Eq. 14-17): it walked on toward a goal to one side of a ball and left the
   // ball on the other, even after turning to it and preparing (22 of 24 generated balls 25-55 degrees to
-  // one side, the goal to the other; 1-9 balls of each set of 200 random built-in courses).
+  // one side, the goal to the other; on the random built-in courses 1-9 objects of each set of 200 were
+  // never acted on, and none are with it).
   bool make_for_ball_source = true;
   // Bodies kept out of obstacles: a body that has gone into an obstacle it is not crossing with a target
   // motion (a leg swung into a hurdle's board by a turn just after it, a head walked into a rail) is set
