@@ -192,9 +192,49 @@ World::RoomShort World::launch_room_short(int obstacle, TargetAction action, glm
   return room;
 }
 
-// Sec. 7.2: the source of influence. User: the closest opponent still fighting (fight), else the closest
-// unused object in the facing direction (within 90 degrees; an across obstacle also within its width, and
-// used or not while the way to the goal crosses it).
+int World::obstacle_between(glm::vec2 from, glm::vec2 to) const {
+  int nearest = -1;
+  float nearest_distance = std::numeric_limits<float>::infinity();
+  for (int k = 0; k < static_cast<int>(objects_.size()); ++k) {
+    const WorldObject& o = objects_[static_cast<size_t>(k)];
+    if (o.used || !is_across(o.spec.type) || assets_->target(o.spec.action).clip < 0) continue;
+    const glm::vec2 p = floor_xz(o.position);
+    const std::optional<float> cross = crossing_lateral(from, to, p, o.spec.heading);
+    if (!cross || std::fabs(*cross) > 0.5f * o.spec.size.x + kBesideEnd) continue;
+    const float distance = std::fabs(glm::dot(p - from, forward_of(o.spec.heading)));
+    if (distance < nearest_distance) {
+      nearest_distance = distance;
+      nearest = k;
+    }
+  }
+  return nearest;
+}
+
+// The room an opponent leaves beyond the obstacle: as far as the user's clip reaches past the obstacle's
+// line (its body up to the frame it may be left), and a strike's reach more. Nearer, the user's clip would
+// come up into it; walking up to the line, the two stood face to face across the rail, each short of its
+// launch point, for good.
+bool World::waiting_beyond_obstacle(const WorldCharacter& c) const {
+  if (c.control != Control::Opponent || c.defeated || c.source_character < 0) return false;
+  const WorldCharacter& u = characters_[static_cast<size_t>(c.source_character)];
+  const Runtime& user_rt = *runtime_[static_cast<size_t>(c.source_character)];
+  // The user crossing one now (the obstacle is used from its launch): waited for until it is out of its clip.
+  int k = u.in_target && user_rt.target_object >= 0 && is_across(objects_[static_cast<size_t>(user_rt.target_object)].spec.type)
+              ? user_rt.target_object
+              : -1;
+  if (k < 0) k = obstacle_between(c.position, u.position);
+  if (k < 0) return false;
+  const WorldObject& o = objects_[static_cast<size_t>(k)];
+  const TargetMotion& crossing = assets_->target(o.spec.action);
+  const BodyReach& body = assets_->body_reaches[static_cast<size_t>(o.spec.action)];
+  const float beyond = body.z.empty() ? 0.0f : std::max(*std::max_element(body.z.begin(), body.z.end()) - crossing.reach, 0.0f);
+  const float from_line = std::fabs(glm::dot(c.position - floor_xz(o.position), forward_of(o.spec.heading)));
+  return from_line <= beyond + assets_->target(c.met_with).reach;
+}
+
+// Sec. 7.2: the source of influence. User: the closest opponent still fighting (fight), or the obstacle
+// between the two, else the closest unused object in the facing direction (within 90 degrees; an across
+// obstacle also within its width, and used or not while the way to the goal crosses it).
 // Opponents: the user's character.
 void World::choose_source(int index) {
   WorldCharacter& c = characters_[static_cast<size_t>(index)];
@@ -248,7 +288,18 @@ void World::choose_source(int index) {
     }
   }
   if (c.has_source) {
-    c.source = launch_point(index, c.source_object_position, c.prepared_for);
+    // An obstacle between the two is crossed first: the opponent waits beyond it (waiting_beyond_obstacle).
+    const int between = obstacle_between(c.position, c.source_object_position);
+    if (between < 0) {
+      c.source = launch_point(index, c.source_object_position, c.prepared_for);
+      return;
+    }
+    const WorldObject& o = objects_[static_cast<size_t>(between)];
+    c.source_character = -1;
+    c.source_object = between;
+    c.prepared_for = o.spec.action;
+    c.source_object_position = floor_xz(o.position);
+    c.source = launch_point(index, between);
     return;
   }
   // During a cross-fade (out of a target clip, kept preparation) the stream's root has been placed by the

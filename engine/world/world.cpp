@@ -267,7 +267,8 @@ void World::control(int index) {
     // graph's point-cloud distance) and cross-faded over GraphParams::blend_s. Loops and the returns from
     // target motions still follow graph edges.
     const bool stay = (c.control == Control::User && c.reached_goal) ||
-                      (c.control == Control::Opponent && c.defeated && (c.goal.empty() || turning_to_step_aside(c)));
+                      (c.control == Control::Opponent && c.defeated && (c.goal.empty() || turning_to_step_aside(c))) ||
+                      waiting_beyond_obstacle(c);
     const int wanted = stay ? assets_->idle_node : assets_->core_nodes[static_cast<size_t>(d.motion)];
     if (wanted != rt.stream.node()) {
       rt.begin_fade(c.pose, params_.graph.blend_s);

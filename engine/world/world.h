@@ -445,6 +445,13 @@ class World {
   bool striking_at(int striker, int target) const;
   static glm::vec2 character_goal(const WorldCharacter& c);
   static bool turning_to_step_aside(const WorldCharacter& c);
+  // The unused across obstacle (bar, beam, hurdle) nearest `from` whose span the straight way from `from` to
+  // `to` crosses (or passes within kBesideEnd of its end), whose clip the set has; -1 if none. A user and an
+  // opponent with one between them meet once the user has crossed it.
+  int obstacle_between(glm::vec2 from, glm::vec2 to) const;
+  // An opponent that waits for the user on its own side of an obstacle between them, with room left for the
+  // user's clip to come out of it (World::steering_goal).
+  bool waiting_beyond_obstacle(const WorldCharacter& c) const;
   std::optional<glm::vec2> steering_goal(const WorldCharacter& c) const;
   void update_arrival(int index);
   // The COM and support of characters_[index].pose; kinematics_in_scratch: the runtime's synthesis scratch

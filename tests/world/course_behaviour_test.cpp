@@ -595,6 +595,48 @@ TEST_CASE("a ball off to one side of the way, the goal beyond on the other: the 
   }
 }
 
+TEST_CASE("an opponent beyond a bar, beam or hurdle waits there while the user crosses it, then they fight") {
+  // A bar, beam or hurdle 4-5.5 m ahead, an opponent 5-8 m beyond it and up to 45 degrees to either side,
+  // the goal past both. The user made for the opponent and the opponent for the user: they met face to face
+  // across the rail, each short of its launch point, and stood there for good: 4 of these 6 never reached
+  // the goal, and none crossed the obstacle and then punched. The user now crosses first, and the opponent
+  // waits on its side with room for the user's clip to come out.
+  std::mt19937 rng(88);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  const char* kinds[] = {R"("type": "bar", "action": "crawl", "size": [4, 0.7, 0.1])",
+                         R"("type": "beam", "action": "duck", "size": [4, 1.2, 0.1])",
+                         R"("type": "hurdle", "action": "jump", "size": [4, 0.45, 0.1])"};
+  const TargetAction crossings[] = {TargetAction::Crawl, TargetAction::Duck, TargetAction::Jump};
+  std::vector<Scenario> courses;
+  for (int k = 0; k < 6; ++k) {
+    const float z = 4.0f + 1.5f * unit(rng), heading_deg = 40.0f * unit(rng) - 20.0f;
+    const float bearing = (90.0f * unit(rng) - 45.0f) * kPi / 180.0f, beyond = 5.0f + 3.0f * unit(rng);
+    const float opponent_x = beyond * std::sin(bearing), opponent_z = z + beyond * std::cos(bearing);
+    const std::string text =
+        R"({"auto": true, "characters": [{"position": [0, 0], "heading": 0, "control": "user"}], "objects": [{)" +
+        std::string(kinds[k % 3]) + R"(, "position": [0, )" + std::to_string(z) + R"(], "heading": )" + std::to_string(heading_deg) +
+        R"(}, {"type": "opponent", "action": "punch_right", "position": [)" + std::to_string(opponent_x) + ", " +
+        std::to_string(opponent_z) + R"(], "heading": )" + std::to_string(180.0f + bearing * 180.0f / kPi) +
+        R"(}], "goal": [0, )" + std::to_string(z + 9.0f) + "]}";
+    courses.push_back(parse_scenario(text, "opponent beyond " + std::to_string(k)));
+  }
+  const std::vector<CourseEvaluation> runs = evaluate_courses(courses, builtin_assets(), 2);
+  for (size_t k = 0; k < runs.size(); ++k) {
+    CAPTURE(k);
+    const CourseEvaluation& e = runs[k];
+    INFO(e.clearance.min_object_what);
+    CHECK(e.reached_goal);
+    CHECK(e.clearance.object_frames == 0);
+    std::vector<TargetAction> launched;  // the user's
+    for (const CourseLaunch& l : e.launches) {
+      launched.push_back(l.action);
+      CHECK(l.alpha_at_launch >= 0.85f);
+    }
+    const std::vector<TargetAction> expected{crossings[k % 3], TargetAction::PunchRight};
+    CHECK(launched == expected);
+  }
+}
+
 TEST_CASE("a hurdle jumped beside a beaten opponent: the jump is not shoved into the board") {
   // Random course 111 of seed 31337: the user beats an opponent, walks along the hurdle behind it to its
   // launch place and launches 0.3 m too near, so the clip is slid back onto its launch point, toward the
