@@ -44,9 +44,9 @@ std::optional<glm::vec2> World::steering_goal(const WorldCharacter& c) const {
   // keys would, until it is defeated (world.h); then the scenario's goal again.
   if (c.control == Control::User && auto_launch_ && c.source_character >= 0) return character_goal(c);
   if (c.goal.empty()) return std::nullopt;
-  // So is a ball in range that is its source and nearer than the waypoint or goal it makes for
-  // (RuntimeParams::make_for_ball_source); a ball beyond the waypoint is met after it, and a ball that is
-  // the goal (Sec. 7.2's kick) is made for as the goal.
+  // Unattended, it makes for a ball in range that is its source and nearer than the waypoint or goal it
+  // makes for, too (RuntimeParams::make_for_ball_source); a ball beyond the waypoint is met after it, and a
+  // ball that is the goal (Sec. 7.2's kick) is made for as the goal.
   if (params_.runtime.make_for_ball_source && c.control == Control::User && auto_launch_ && c.source_in_range && c.source_object >= 0 &&
       objects_[static_cast<size_t>(c.source_object)].spec.type == ObjectType::Ball &&
       glm::length(c.source_object_position - c.position) < glm::length(c.goal.front() - c.position))
