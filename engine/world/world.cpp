@@ -425,8 +425,11 @@ void World::try_auto_launch(int index) {
   // A punch is not thrown into one coming at the character: it waits until that strike is over, then
   // counters. Thrown together, the two would strike through each other's arms.
   if (c.source_character >= 0 && striking_at(c.source_character, index)) return;
-  // On the launch point, or arrived and prepared enough to launch where it stands (world.h, arrival.h).
-  const bool on_point = c.to_launch <= 0.0f;
+  // On the launch point, or arrived and prepared enough to launch where it stands (world.h, arrival.h). One
+  // that has arrived on or past its point unprepared (started a step from a beam, whose duck begins 2.5 m
+  // before it) stands and prepares first, as an arrival short of it does: launched at once, the duck was
+  // entered late at alpha 0.04, the body never lowered before it.
+  const bool on_point = c.to_launch <= 0.0f && (!c.arrived || c.alpha >= params_.runtime.launch_alpha);
   // An opponent holding short of its point (update_arrival) waits there for the user to come within its
   // reach: a punch launched from farther would strike the air.
   const bool ready = c.arrived && c.alpha >= params_.runtime.launch_alpha &&

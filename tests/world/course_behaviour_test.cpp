@@ -637,6 +637,36 @@ TEST_CASE("an opponent beyond a bar, beam or hurdle waits there while the user c
   }
 }
 
+TEST_CASE("started a step from a beam or a bar, the character prepares where it stands before it goes under") {
+  // The duck begins 2.5 m before its beam and the crawl 1.1 m before its bar, so a character started
+  // 0.7-1.5 m from one may already be past its launch point. It launched at once, unprepared: five of these
+  // six at alpha 0.04, the sixth at 0.76. It now stands and prepares first.
+  std::mt19937 rng(99);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  const char* kinds[] = {R"("type": "beam", "action": "duck", "size": [4, 1.2, 0.1])",
+                         R"("type": "bar", "action": "crawl", "size": [4, 0.7, 0.1])"};
+  std::vector<Scenario> courses;
+  for (int k = 0; k < 6; ++k) {
+    const float z = 0.7f + 0.8f * unit(rng), heading_deg = 30.0f * unit(rng) - 15.0f, obstacle_deg = 30.0f * unit(rng) - 15.0f;
+    const std::string text = R"({"auto": true, "characters": [{"position": [0, 0], "heading": )" + std::to_string(heading_deg) +
+                             R"(, "control": "user"}], "objects": [{)" + std::string(kinds[k % 2]) + R"(, "position": [0, )" +
+                             std::to_string(z) + R"(], "heading": )" + std::to_string(obstacle_deg) + R"(}], "goal": [0, )" +
+                             std::to_string(z + 4.0f) + "]}";
+    courses.push_back(parse_scenario(text, "a step from it " + std::to_string(k)));
+  }
+  const std::vector<CourseEvaluation> runs = evaluate_courses(courses, builtin_assets(), 2);
+  for (size_t k = 0; k < runs.size(); ++k) {
+    CAPTURE(k);
+    const CourseEvaluation& e = runs[k];
+    INFO(e.clearance.min_object_what);
+    CHECK(e.reached_goal);
+    CHECK(e.clearance.object_frames == 0);
+    REQUIRE(e.launches.size() == 1);
+    CHECK(e.launches[0].action == (k % 2 == 0 ? TargetAction::Duck : TargetAction::Crawl));
+    CHECK(e.launches[0].alpha_at_launch >= 0.85f);
+  }
+}
+
 TEST_CASE("a hurdle jumped beside a beaten opponent: the jump is not shoved into the board") {
   // Random course 111 of seed 31337: the user beats an opponent, walks along the hurdle behind it to its
   // launch place and launches 0.3 m too near, so the clip is slid back onto its launch point, toward the
