@@ -115,6 +115,20 @@ void check_goal_and_one_prepared_kick(const Scenario& course) {
   CHECK(kicks == 1);
 }
 
+// Runs generated courses on both cores: each must reach its goal with no body in an object; `check` is
+// given each course's index and evaluation for the rest.
+template <class Check>
+void check_generated_courses(const std::vector<Scenario>& courses, Check&& check) {
+  const std::vector<CourseEvaluation> runs = evaluate_courses(courses, builtin_assets(), 2);
+  for (size_t k = 0; k < runs.size(); ++k) {
+    CAPTURE(k);
+    INFO(runs[k].clearance.min_object_what);
+    CHECK(runs[k].reached_goal);
+    CHECK(runs[k].clearance.object_frames == 0);
+    check(k, runs[k]);
+  }
+}
+
 const LaunchRecord* launch_of(const World& world, TargetAction action) {
   for (const LaunchRecord& r : world.launches())
     if (r.character == world.user() && r.action == action) return &r;
@@ -620,13 +634,7 @@ TEST_CASE("an opponent beyond a bar, beam or hurdle waits there while the user c
         R"(}], "goal": [0, )" + std::to_string(z + 9.0f) + "]}";
     courses.push_back(parse_scenario(text, "opponent beyond " + std::to_string(k)));
   }
-  const std::vector<CourseEvaluation> runs = evaluate_courses(courses, builtin_assets(), 2);
-  for (size_t k = 0; k < runs.size(); ++k) {
-    CAPTURE(k);
-    const CourseEvaluation& e = runs[k];
-    INFO(e.clearance.min_object_what);
-    CHECK(e.reached_goal);
-    CHECK(e.clearance.object_frames == 0);
+  check_generated_courses(courses, [&](size_t k, const CourseEvaluation& e) {
     std::vector<TargetAction> launched;  // the user's
     for (const CourseLaunch& l : e.launches) {
       launched.push_back(l.action);
@@ -634,7 +642,7 @@ TEST_CASE("an opponent beyond a bar, beam or hurdle waits there while the user c
     }
     const std::vector<TargetAction> expected{crossings[k % 3], TargetAction::PunchRight};
     CHECK(launched == expected);
-  }
+  });
 }
 
 TEST_CASE("started a step from a beam or a bar, the character prepares where it stands before it goes under") {
@@ -654,17 +662,11 @@ TEST_CASE("started a step from a beam or a bar, the character prepares where it 
                              std::to_string(z + 4.0f) + "]}";
     courses.push_back(parse_scenario(text, "a step from it " + std::to_string(k)));
   }
-  const std::vector<CourseEvaluation> runs = evaluate_courses(courses, builtin_assets(), 2);
-  for (size_t k = 0; k < runs.size(); ++k) {
-    CAPTURE(k);
-    const CourseEvaluation& e = runs[k];
-    INFO(e.clearance.min_object_what);
-    CHECK(e.reached_goal);
-    CHECK(e.clearance.object_frames == 0);
+  check_generated_courses(courses, [](size_t k, const CourseEvaluation& e) {
     REQUIRE(e.launches.size() == 1);
     CHECK(e.launches[0].action == (k % 2 == 0 ? TargetAction::Duck : TargetAction::Crawl));
     CHECK(e.launches[0].alpha_at_launch >= 0.85f);
-  }
+  });
 }
 
 TEST_CASE("a hurdle jumped beside a beaten opponent: the jump is not shoved into the board") {
