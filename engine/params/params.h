@@ -213,7 +213,8 @@ struct RuntimeParams {
   bool make_for_ball_source = true;
   // Bodies kept out of obstacles: a body that has gone into an obstacle it is not crossing with a target
   // motion (a leg swung into a hurdle's board by a turn just after it, a head walked into a rail) is set
-  // back out along the obstacle's crossing direction (engine/world/bodies.cpp). Off: bodies go through.
+  // back out along the obstacle's crossing direction (engine/world/bodies.cpp); a kicked ball bounces off
+  // the obstacles, bodies and balls it meets (engine/world/rolling_balls.cpp). Off: both go through.
   bool keep_clear = true;
 };
 

@@ -190,16 +190,7 @@ void World::step() {
   const float dt = params_.runtime.fixed_dt;
   time_ += dt;
   ++ticks_;
-  // Kicked balls roll and slow down (rolling resistance of grass, about 1.5 m/s^2). Before the characters:
-  // a ball struck this tick is still where the foot met it in this tick's frame, and leaves on the next.
-  for (auto& o : objects_) {
-    const float speed = glm::length(o.velocity);
-    if (speed <= 0.0f) continue;
-    const float slower = std::max(0.0f, speed - 1.5f * dt);
-    o.velocity *= slower / speed;
-    o.position.x += o.velocity.x * dt;
-    o.position.z += o.velocity.y * dt;
-  }
+  roll_balls();  // before the characters: a ball struck this tick leaves on the next (rolling_balls.cpp)
   for (int i = 0; i < static_cast<int>(characters_.size()); ++i) step_character(i);
   if (decisions_held_ > 0) --decisions_held_;
   keep_apart();

@@ -491,6 +491,7 @@ class World {
   void place_body(int index, glm::vec2& low, glm::vec2& high);
   float closing_share(size_t i, size_t j, glm::vec2 dir) const;
   void keep_clear_of_obstacles(int index);
+  void roll_balls();
   void displace(int index, glm::vec2 offset);
 
   Scenario scenario_;
