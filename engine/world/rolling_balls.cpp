@@ -97,8 +97,7 @@ glm::vec2 to_world_floor(const ObjectFrame& frame, glm::vec2 local) {
 // Each tick a rolling ball slows down, then moves along its velocity in steps of at most half its radius;
 // after each step it is set out of whatever it has gone into and bounces off it. The bodies are the poses of
 // the last tick (the characters step after the balls): a ball struck this tick is still where the foot met
-// it in this tick's frame, and leaves on the next. The character kicking a ball is passed over by it while
-// the kick plays: the foot and the ball part at the strike, and the follow-through is slower than the ball.
+// it in this tick's frame, and leaves on the next.
 // A ball no one has kicked yet stays where it lies when another meets it (the other bounces off it): the
 // kick it waits for is aimed at where it was set, and a ball rolling away from its kicker would be chased.
 void World::roll_balls() {
@@ -171,7 +170,11 @@ void World::roll_balls() {
         const WorldCharacter& c = characters_[i];
         if (glm::length(c.position - at) > kBodyReach + radius) continue;
         Runtime& rt = *runtime_[i];
-        if (c.in_target && c.playing == TargetAction::Kick && rt.target_object == static_cast<int>(k)) continue;
+        // Its kicker's foot and the ball part at the strike, and the follow-through is slower than the ball:
+        // while the ball moves away from its kicker in the kick, the two do not meet (one coming back does).
+        if (c.in_target && c.playing == TargetAction::Kick && rt.target_object == static_cast<int>(k) &&
+            glm::dot(ball.velocity, at - c.position) > 0.0f)
+          continue;
         if (!body_placed_[i]) {
           place_body(static_cast<int>(i), body_low_[i], body_high_[i]);
           body_placed_[i] = 1;
