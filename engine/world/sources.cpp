@@ -232,6 +232,51 @@ bool World::waiting_beyond_obstacle(const WorldCharacter& c) const {
   return from_line <= beyond + assets_->target(c.met_with).reach;
 }
 
+int World::ball_before_opponent(int index, float opponent_distance) const {
+  const WorldCharacter& c = characters_[static_cast<size_t>(index)];
+  const Runtime& rt = *runtime_[static_cast<size_t>(index)];
+  const glm::vec2 fwd = forward_of(c.heading);
+  int chosen = -1;
+  float nearest = std::numeric_limits<float>::infinity();
+  for (int k = 0; k < static_cast<int>(objects_.size()); ++k) {
+    const WorldObject& o = objects_[static_cast<size_t>(k)];
+    if (o.used || o.spec.type != ObjectType::Ball || assets_->target(o.spec.action).clip < 0) continue;
+    const glm::vec2 d = floor_xz(o.position) - c.position;
+    const float distance = glm::length(d);
+    // Chosen once, it is kept while it lies within kSourceKeptAngle of the facing (the opponent, waiting,
+    // no longer comes nearer, and the halfway mark would pass it over again at the last step).
+    const bool kept = k == rt.source_key;
+    const float within = kept ? std::cos(kSourceKeptAngle) : kCos45;
+    if (glm::dot(d, fwd) <= within * distance) continue;
+    if (!kept && distance >= 0.5f * opponent_distance) continue;
+    if (obstacle_between(c.position, floor_xz(o.position)) >= 0) continue;
+    if (distance < nearest) {
+      nearest = distance;
+      chosen = k;
+    }
+  }
+  return chosen;
+}
+
+bool World::waiting_for_kick(const WorldCharacter& c) const {
+  if (c.control != Control::Opponent || c.defeated) return false;
+  const WorldCharacter& u = characters_[static_cast<size_t>(user_)];
+  const Runtime& user_rt = *runtime_[static_cast<size_t>(user_)];
+  // Making for a ball, or kicking one that has not yet left the foot.
+  int ball = -1;
+  if (u.in_target && u.playing == TargetAction::Kick && !user_rt.struck) ball = user_rt.target_object;
+  else if (!u.in_target && u.source_object >= 0 && objects_[static_cast<size_t>(u.source_object)].spec.type == ObjectType::Ball)
+    ball = u.source_object;
+  if (ball < 0) return false;
+  const TargetMotion& kick = assets_->target(TargetAction::Kick);
+  const BodyReach& body = assets_->body_reaches[static_cast<size_t>(TargetAction::Kick)];
+  const float beyond = body.z.empty() ? 0.0f : std::max(*std::max_element(body.z.begin(), body.z.end()) - kick.reach, 0.0f);
+  const float from_ball = glm::length(c.position - floor_xz(objects_[static_cast<size_t>(ball)].position));
+  return from_ball <= beyond + assets_->target(c.met_with).reach + 2.0f * kPersonalSpace;
+}
+
+bool World::waits_its_turn(const WorldCharacter& c) const { return waiting_beyond_obstacle(c) || waiting_for_kick(c); }
+
 // Sec. 7.2: the source of influence. User: the closest opponent still fighting (fight), or the obstacle
 // between the two, else the closest unused object in the facing direction (within 90 degrees; an across
 // obstacle also within its width, and used or not while the way to the goal crosses it).
@@ -291,6 +336,17 @@ void World::choose_source(int index) {
     // An obstacle between the two is crossed first: the opponent waits beyond it (waiting_beyond_obstacle).
     const int between = obstacle_between(c.position, c.source_object_position);
     if (between < 0) {
+      // A ball on the way, reached well before the two meet, is kicked first: the opponent waits
+      // (waiting_for_kick).
+      const int ball = ball_before_opponent(index, glm::length(c.source_object_position - c.position));
+      if (ball >= 0) {
+        c.source_character = -1;
+        c.source_object = ball;
+        c.prepared_for = objects_[static_cast<size_t>(ball)].spec.action;
+        c.source_object_position = floor_xz(objects_[static_cast<size_t>(ball)].position);
+        c.source = launch_point(index, c.source_object_position, c.prepared_for);
+        return;
+      }
       c.source = launch_point(index, c.source_object_position, c.prepared_for);
       return;
     }

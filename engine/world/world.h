@@ -452,6 +452,17 @@ class World {
   // An opponent that waits for the user on its own side of an obstacle between them, with room left for the
   // user's clip to come out of it (World::steering_goal).
   bool waiting_beyond_obstacle(const WorldCharacter& c) const;
+  // The unused ball the user kicks before meeting the opponent it would meet `opponent_distance` away: ahead
+  // (within 45 degrees of the facing), nearer than halfway to the opponent (the two walk toward each other),
+  // with no obstacle between; the nearest such, or -1. An approaching opponent otherwise took the user past
+  // a ball on its way, and once the fight was over the ball lay behind, never kicked.
+  int ball_before_opponent(int index, float opponent_distance) const;
+  // An opponent that waits while the user makes for a ball or kicks it (World::steering_goal), as far from
+  // the ball as the kick's body reaches past it, its own strike's reach and two persons' space more: out of
+  // the kick's way, and not so near that it would strike at the user in the kick. The ball, kicked along
+  // the user's facing, may still come its way (rolling_balls.cpp).
+  bool waiting_for_kick(const WorldCharacter& c) const;
+  bool waits_its_turn(const WorldCharacter& c) const;  // either of the two
   std::optional<glm::vec2> steering_goal(const WorldCharacter& c) const;
   void update_arrival(int index);
   // The COM and support of characters_[index].pose; kinematics_in_scratch: the runtime's synthesis scratch

@@ -35,9 +35,10 @@ bool World::turning_to_step_aside(const WorldCharacter& c) {
 // Where the character makes for (none: it stays): the controller's goal, and the tight turns' (steer_tightly).
 std::optional<glm::vec2> World::steering_goal(const WorldCharacter& c) const {
   // An opponent makes for the user, or steps aside once defeated (defeat); it stays where it is while an
-  // obstacle between them is still to be crossed and it is as near to it as leaves the user room.
+  // obstacle between them is still to be crossed, or a ball kicked, and it is as near as leaves the user
+  // room (waits_its_turn).
   if (c.control == Control::Opponent && c.has_source) {
-    if (waiting_beyond_obstacle(c)) return std::nullopt;
+    if (waits_its_turn(c)) return std::nullopt;
     return character_goal(c);
   }
   // Unattended (auto), the user meets the opponent that is its source, as a player steering with the

@@ -1,0 +1,85 @@
+// A ball on the user's way to an opponent that comes at it: the ball is kicked first, the opponent waits
+// for the kick, then the two meet (World::ball_before_opponent, World::waiting_for_kick).
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <string>
+
+#include "engine/world/clearance.h"
+#include "engine/world/world.h"
+#include "tests/world/builtin_assets.h"
+
+using namespace prep;
+
+namespace {
+
+// The user at the origin, turned up to 20 degrees; a ball 1.5-3.5 m ahead, up to 0.8 m aside; an opponent
+// 2.2-4 times as far, up to 30 degrees aside, facing the user; the goal 2-5 m beyond the opponent.
+std::string ball_then_opponent_course(std::mt19937& rng) {
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  const float ball_z = 1.5f + 2.0f * u(rng), ball_x = (u(rng) - 0.5f) * 1.6f;
+  const float opponent_distance = (2.2f + 1.8f * u(rng)) * ball_z;
+  const float bearing_deg = (u(rng) - 0.5f) * 60.0f, bearing = bearing_deg * 3.14159265f / 180.0f;
+  const char* punch = u(rng) < 0.5f ? "punch_left" : "punch_right";
+  const float goal_x = (u(rng) - 0.5f) * 6.0f, goal_z = opponent_distance + 2.0f + 3.0f * u(rng);
+  const float heading = (u(rng) - 0.5f) * 40.0f;
+  char text[1024];
+  std::snprintf(text, sizeof text,
+                "{\"auto\": true, \"characters\": [{\"position\": [0, 0], \"heading\": %.2f, \"control\": \"user\"}], "
+                "\"objects\": [{\"type\": \"ball\", \"position\": [%.3f, %.3f], \"size\": [0.22, 0.22, 0.22]}, "
+                "{\"type\": \"opponent\", \"action\": \"%s\", \"position\": [%.3f, %.3f], \"heading\": %.2f}], "
+                "\"goal\": [%.3f, %.3f]}",
+                heading, ball_x, ball_z, punch, opponent_distance * std::sin(bearing), opponent_distance * std::cos(bearing),
+                180.0f + bearing_deg, goal_x, goal_z);
+  return text;
+}
+
+}  // namespace
+
+TEST_CASE("a ball on the way to an opponent is kicked first, the opponent waiting for the kick, then the two meet") {
+  std::mt19937 rng(11);
+  int kicked_first = 0, waited = 0;
+  for (int k = 0; k < 8; ++k) {
+    const std::string text = ball_then_opponent_course(rng);
+    CAPTURE(text);
+    World world(parse_scenario(text, "ball-then-opponent"), test::builtin_assets());
+    ClearanceLog log(world);
+    const int user = world.user(), opponent = user == 0 ? 1 : 0;
+    float struck = -1.0f;  // when the ball left the foot
+    bool opponent_stood = false;
+    float opponent_from_ball = 0.0f;  // at the strike
+    world.run_until_done(40.0f, 1.0f, [&](const World& w) {
+      log.observe(w);
+      if (struck < 0.0f && glm::length(w.objects()[0].velocity) > 0.0f) {
+        struck = w.time();
+        const WorldObject& ball = w.objects()[0];
+        opponent_from_ball = glm::length(w.characters()[static_cast<size_t>(opponent)].position - glm::vec2(ball.position.x, ball.position.z));
+      }
+      if (struck < 0.0f && w.characters()[static_cast<size_t>(opponent)].clip == w.assets().idle_node) opponent_stood = true;
+    });
+    const WorldCharacter& them = world.characters()[static_cast<size_t>(opponent)];
+    CHECK(world.goal_reached());
+    CHECK(world.objects()[0].used);
+    CHECK(them.defeated);
+    CHECK(log.summary.object_frames == 0);
+    // The user's kick, then its punch; the opponent strikes at nothing before the ball has left the foot.
+    float kick = -1.0f, punch = -1.0f, opponent_punch = 1e9f;
+    for (const LaunchRecord& r : world.launches()) {
+      if (r.character == user && r.action == TargetAction::Kick && kick < 0.0f) kick = r.time;
+      if (r.character == user && r.action != TargetAction::Kick && punch < 0.0f) punch = r.time;
+      if (r.character == opponent) opponent_punch = std::min(opponent_punch, r.time);
+    }
+    CHECK(kick >= 0.0f);
+    CHECK(punch > kick);
+    CHECK(struck > 0.0f);
+    CHECK(opponent_punch > struck);
+    // It waited out of the kick's way: at least two persons' space from the ball.
+    CHECK(opponent_from_ball >= 2.0f * kPersonalSpace);
+    kicked_first += kick >= 0.0f && punch > kick;
+    waited += opponent_stood;
+  }
+  MESSAGE(kicked_first << " of 8 balls kicked before the punch; " << waited << " opponents stood waiting for the kick");
+  CHECK(waited >= 1);  // the courses include opponents near enough to have to wait (the check above bites)
+}
