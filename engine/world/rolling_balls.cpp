@@ -94,14 +94,82 @@ glm::vec2 to_world_floor(const ObjectFrame& frame, glm::vec2 local) {
 
 }  // namespace
 
+// A rolling ball against the obstacles' solids and the other balls (in each object's frame): the push that
+// sets it out of what it has gone into, its velocity bounced off it. A ball no one has kicked yet stays where
+// it lies when another meets it (the other bounces off it): the kick it waits for is aimed at where it was
+// set, and a ball rolling away from its kicker would be chased. Kicked ones share the blow as equal masses.
+glm::vec2 World::ball_meets_objects(size_t k, glm::vec3 centre, float radius) {
+  WorldObject& ball = objects_[k];
+  glm::vec2 push(0.0f);
+  for (size_t j = 0; j < objects_.size(); ++j) {
+    if (j == k) continue;
+    WorldObject& other = objects_[j];
+    const bool other_ball = other.spec.type == ObjectType::Ball;
+    if (!(floor_plane::is_across(other.spec.type) || other_ball)) continue;
+    const ObjectFrame frame(floor_xz(other.position), other.spec.heading);
+    const glm::vec3 local = frame.to_local(centre);
+    for (const ObjectSolid& solid : solids_[j]) {
+      const BallContact c = solid.sphere ? ball_in_capsule(local, radius, solid.centre, solid.centre, 0.5f * solid.extents.x)
+                                         : ball_in_box(local, radius, solid);
+      if (c.depth <= 0.0f || c.out == glm::vec2(0.0f)) continue;
+      const glm::vec2 out = to_world_floor(frame, c.out);
+      push += (c.depth + kBallSkin) * out;
+      if (other_ball && other.used) {
+        // Equal masses: each keeps (1 - e) / 2 of its own speed along the line between them and takes
+        // (1 + e) / 2 of the other's.
+        const float mine = glm::dot(ball.velocity, out), theirs = glm::dot(other.velocity, out);
+        if (mine < theirs) {
+          const float exchange = 0.5f * (1.0f + kBallRestitution) * (theirs - mine);
+          ball.velocity += exchange * out;
+          other.velocity -= exchange * out;
+        }
+      } else {
+        ball.velocity = bounced(ball.velocity, out, other_ball ? kBallRestitution : kObstacleRestitution);
+      }
+    }
+  }
+  return push;
+}
+
+// A rolling ball against the bodies as the last tick left them (their capsules placed once per tick, in
+// keep_bodies_apart's scratch): the push out of them, its velocity bounced off them.
+glm::vec2 World::ball_meets_bodies(size_t k, glm::vec3 centre, float radius) {
+  WorldObject& ball = objects_[k];
+  const glm::vec2 at(centre.x, centre.z);
+  glm::vec2 push(0.0f);
+  for (size_t i = 0; i < characters_.size(); ++i) {
+    const WorldCharacter& c = characters_[i];
+    if (glm::length(c.position - at) > kBodyReach + radius) continue;
+    Runtime& rt = *runtime_[i];
+    // Its kicker's foot and the ball part at the strike, and the follow-through is slower than the ball:
+    // while the ball moves away from its kicker in the kick, the two do not meet (one coming back does).
+    if (c.in_target && c.playing == TargetAction::Kick && rt.target_object == static_cast<int>(k) &&
+        glm::dot(ball.velocity, at - c.position) > 0.0f)
+      continue;
+    if (!body_placed_[i]) {
+      place_body(static_cast<int>(i), body_low_[i], body_high_[i]);
+      body_placed_[i] = 1;
+    }
+    const glm::vec2 low = body_low_[i], high = body_high_[i];
+    if (at.x + radius < low.x || at.x - radius > high.x || at.y + radius < low.y || at.y - radius > high.y) continue;
+    for (const PlacedCapsule& capsule : rt.capsules) {
+      const BallContact contact = ball_in_capsule(centre, radius, capsule.a, capsule.b, capsule.radius);
+      if (contact.depth <= 0.0f || contact.out == glm::vec2(0.0f)) continue;
+      push += (contact.depth + kBallSkin) * contact.out;
+      ball.velocity = bounced(ball.velocity, contact.out, kBodyRestitution);
+    }
+  }
+  return push;
+}
+
 // Each tick a rolling ball slows down, then moves along its velocity in steps of at most half its radius;
-// after each step it is set out of whatever it has gone into and bounces off it. The bodies are the poses of
-// the last tick (the characters step after the balls): a ball struck this tick is still where the foot met
-// it in this tick's frame, and leaves on the next.
-// A ball no one has kicked yet stays where it lies when another meets it (the other bounces off it): the
-// kick it waits for is aimed at where it was set, and a ball rolling away from its kicker would be chased.
+// after each step it is set out of whatever it has gone into and bounces off it. The balls move before the
+// characters step: a ball struck this tick is still where the foot met it in this tick's frame, and leaves
+// on the next.
 void World::roll_balls() {
   const float dt = params_.runtime.fixed_dt;
+  body_low_.resize(characters_.size());
+  body_high_.resize(characters_.size());
   for (size_t k = 0; k < objects_.size(); ++k) {
     WorldObject& ball = objects_[k];
     const float speed = glm::length(ball.velocity);
@@ -118,8 +186,6 @@ void World::roll_balls() {
     const glm::vec2 start = floor_xz(ball.position), velocity_at_start = ball.velocity;
     bool met = false;  // once it has met something its path is its own; before, it is the tick's straight line
     glm::vec2 at = start;
-    body_low_.resize(characters_.size());  // keep_bodies_apart's scratch, kept between ticks
-    body_high_.resize(characters_.size());
     body_placed_.assign(characters_.size(), 0);
     for (int step = 1; step <= steps; ++step) {
       if (met) {
@@ -130,65 +196,8 @@ void World::roll_balls() {
         at = glm::vec2(ball.position.x + velocity_at_start.x * dt, ball.position.z + velocity_at_start.y * dt);
       }
       const glm::vec3 centre(at.x, radius, at.y);
-      glm::vec2 push(0.0f);
-      // The obstacles' solids and the balls lying still (in each object's frame).
-      for (size_t j = 0; j < objects_.size(); ++j) {
-        if (j == k) continue;
-        const WorldObject& other = objects_[j];
-        const bool other_ball = other.spec.type == ObjectType::Ball;
-        if (!(floor_plane::is_across(other.spec.type) || other_ball)) continue;
-        const ObjectFrame frame(floor_xz(other.position), other.spec.heading);
-        const glm::vec3 local = frame.to_local(centre);
-        for (const ObjectSolid& solid : solids_[j]) {
-          BallContact c;
-          if (solid.sphere) {
-            c = ball_in_capsule(local, radius, solid.centre, solid.centre, 0.5f * solid.extents.x);
-          } else {
-            c = ball_in_box(local, radius, solid);
-          }
-          if (c.depth <= 0.0f || c.out == glm::vec2(0.0f)) continue;
-          const glm::vec2 out = to_world_floor(frame, c.out);
-          push += (c.depth + kBallSkin) * out;
-          if (other_ball && other.used) {
-            // Equal masses: each keeps (1 - e) / 2 of its own speed along the line between them and takes
-            // (1 + e) / 2 of the other's.
-            WorldObject& hit = objects_[j];
-            const float mine = glm::dot(ball.velocity, out), theirs = glm::dot(hit.velocity, out);
-            if (mine < theirs) {
-              const float exchange = 0.5f * (1.0f + kBallRestitution) * (theirs - mine);
-              ball.velocity += exchange * out;
-              hit.velocity -= exchange * out;
-            }
-          } else {
-            ball.velocity = bounced(ball.velocity, out, other_ball ? kBallRestitution : kObstacleRestitution);
-          }
-          met = true;
-        }
-      }
-      // The bodies.
-      for (size_t i = 0; i < characters_.size(); ++i) {
-        const WorldCharacter& c = characters_[i];
-        if (glm::length(c.position - at) > kBodyReach + radius) continue;
-        Runtime& rt = *runtime_[i];
-        // Its kicker's foot and the ball part at the strike, and the follow-through is slower than the ball:
-        // while the ball moves away from its kicker in the kick, the two do not meet (one coming back does).
-        if (c.in_target && c.playing == TargetAction::Kick && rt.target_object == static_cast<int>(k) &&
-            glm::dot(ball.velocity, at - c.position) > 0.0f)
-          continue;
-        if (!body_placed_[i]) {
-          place_body(static_cast<int>(i), body_low_[i], body_high_[i]);
-          body_placed_[i] = 1;
-        }
-        const glm::vec2 low = body_low_[i], high = body_high_[i];
-        if (at.x + radius < low.x || at.x - radius > high.x || at.y + radius < low.y || at.y - radius > high.y) continue;
-        for (const PlacedCapsule& capsule : rt.capsules) {
-          const BallContact contact = ball_in_capsule(centre, radius, capsule.a, capsule.b, capsule.radius);
-          if (contact.depth <= 0.0f || contact.out == glm::vec2(0.0f)) continue;
-          push += (contact.depth + kBallSkin) * contact.out;
-          ball.velocity = bounced(ball.velocity, contact.out, kBodyRestitution);
-          met = true;
-        }
-      }
+      const glm::vec2 push = ball_meets_objects(k, centre, radius) + ball_meets_bodies(k, centre, radius);
+      met = met || push != glm::vec2(0.0f);
       at += push;
     }
     ball.position.x = at.x;

@@ -502,7 +502,10 @@ class World {
   void place_body(int index, glm::vec2& low, glm::vec2& high);
   float closing_share(size_t i, size_t j, glm::vec2 dir) const;
   void keep_clear_of_obstacles(int index);
+  // Kicked balls roll and bounce off what they meet (rolling_balls.cpp).
   void roll_balls();
+  glm::vec2 ball_meets_objects(size_t ball, glm::vec3 centre, float radius);
+  glm::vec2 ball_meets_bodies(size_t ball, glm::vec3 centre, float radius);
   void displace(int index, glm::vec2 offset);
 
   Scenario scenario_;
