@@ -278,8 +278,9 @@ bool World::waiting_for_kick(const WorldCharacter& c) const {
 bool World::waits_its_turn(const WorldCharacter& c) const { return waiting_beyond_obstacle(c) || waiting_for_kick(c); }
 
 // Sec. 7.2: the source of influence. User: the closest opponent still fighting (fight), or the obstacle
-// between the two, else the closest unused object in the facing direction (within 90 degrees; an across
-// obstacle also within its width, and used or not while the way to the goal crosses it).
+// between the two, or a ball on the way to it reached well before it, else the closest unused object in the
+// facing direction (within 90 degrees; an across obstacle also within its width, and used or not while the
+// way to the goal crosses it).
 // Opponents: the user's character.
 void World::choose_source(int index) {
   WorldCharacter& c = characters_[static_cast<size_t>(index)];
