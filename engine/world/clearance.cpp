@@ -18,14 +18,14 @@ float point_box_distance(glm::vec3 p, glm::vec3 half) {
   return outside + inside;
 }
 
+}  // namespace
+
 glm::vec3 closest_on_segment(glm::vec3 p, glm::vec3 a, glm::vec3 b) {
   const glm::vec3 ab = b - a;
   const float len2 = glm::dot(ab, ab);
   const float t = len2 > 0.0f ? std::clamp(glm::dot(p - a, ab) / len2, 0.0f, 1.0f) : 0.0f;
   return a + t * ab;
 }
-
-}  // namespace
 
 bool is_striking_limb(TargetAction punch, BodyPart part) {
   if (punch == TargetAction::PunchLeft) return part == BodyPart::LeftHand || part == BodyPart::LeftArm;

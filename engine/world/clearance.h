@@ -50,6 +50,8 @@ struct CharacterClearance {
 // A punch's striking hand and forearm (the side the action names): they may meet the one punched at.
 bool is_striking_limb(TargetAction punch, BodyPart part);
 
+// The point of the segment from a to b nearest p.
+glm::vec3 closest_on_segment(glm::vec3 p, glm::vec3 a, glm::vec3 b);
 // Signed distances of the primitives (exposed for the tests).
 float segment_box_distance(glm::vec3 a, glm::vec3 b, glm::vec3 centre, glm::vec3 half_extents);  // to the box's surface
 float segment_segment_distance(glm::vec3 a0, glm::vec3 a1, glm::vec3 b0, glm::vec3 b1);

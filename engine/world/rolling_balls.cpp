@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/world/clearance.h"
 #include "engine/world/floor.h"
 #include "engine/world/world.h"
 #include "engine/world/world_runtime.h"
@@ -67,10 +68,7 @@ BallContact ball_in_box(glm::vec3 centre, float radius, const ObjectSolid& box) 
 
 // A ball against a sphere (another ball) or a capsule (a body part), in one frame.
 BallContact ball_in_capsule(glm::vec3 centre, float radius, glm::vec3 a, glm::vec3 b, float capsule_radius) {
-  const glm::vec3 ab = b - a;
-  const float length2 = glm::dot(ab, ab);
-  const float t = length2 > 0.0f ? std::clamp(glm::dot(centre - a, ab) / length2, 0.0f, 1.0f) : 0.0f;
-  const glm::vec3 gap = centre - (a + t * ab);
+  const glm::vec3 gap = centre - closest_on_segment(centre, a, b);
   const float distance = glm::length(gap);
   BallContact contact;
   if (distance >= radius + capsule_radius) return contact;
