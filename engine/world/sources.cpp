@@ -277,6 +277,10 @@ bool World::waiting_for_kick(const WorldCharacter& c) const {
 
 bool World::waits_its_turn(const WorldCharacter& c) const { return waiting_beyond_obstacle(c) || waiting_for_kick(c); }
 
+bool World::stands_aside(const WorldCharacter& c) const {
+  return c.control == Control::Opponent && !c.defeated && assets_->target(c.met_with).clip < 0;
+}
+
 // Sec. 7.2: the source of influence. User: the closest opponent still fighting (fight), or the obstacle
 // between the two, or a ball on the way to it reached well before it, else the closest unused object in the
 // facing direction (within 90 degrees; an across obstacle also within its width, and used or not while the
@@ -290,7 +294,7 @@ void World::choose_source(int index) {
   const glm::vec2 fwd = forward_of(c.heading);
   if (c.control == Control::Opponent) {
     const WorldCharacter& u = characters_[static_cast<size_t>(user_)];
-    if (c.defeated) return;
+    if (c.defeated || stands_aside(c)) return;
     c.has_source = true;
     c.source_character = user_;
     c.prepared_for = c.met_with;
@@ -302,7 +306,7 @@ void World::choose_source(int index) {
     const WorldObject& o = objects_[static_cast<size_t>(picked_source_)];
     if (o.spec.type == ObjectType::Opponent && o.character >= 0) {
       const WorldCharacter& opponent = characters_[static_cast<size_t>(o.character)];
-      if (!opponent.defeated) {
+      if (!opponent.defeated && !stands_aside(opponent)) {
         c.has_source = true;
         c.source_character = o.character;
         c.prepared_for = opponent.met_with;
@@ -323,7 +327,7 @@ void World::choose_source(int index) {
   float best = std::numeric_limits<float>::infinity();
   for (int k = 0; k < static_cast<int>(characters_.size()); ++k) {
     const WorldCharacter& o = characters_[static_cast<size_t>(k)];
-    if (o.control != Control::Opponent || o.defeated) continue;
+    if (o.control != Control::Opponent || o.defeated || stands_aside(o)) continue;
     const float d = glm::length(o.position - c.position);
     if (d < best) {
       best = d;

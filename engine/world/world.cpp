@@ -215,8 +215,8 @@ void World::control(int index) {
   // A goal just reached is stopped at now, not at the end of the action playing (up to a gait cycle on).
   if (c.control == Control::User && c.reached_goal && rt.stream.node() != assets_->idle_node)
     rt.next_decision = std::min(rt.next_decision, time_);
-  // So does an opponent that is to wait for the user (waits_its_turn): it stops where the wait begins.
-  if (c.control == Control::Opponent && rt.stream.node() != assets_->idle_node && waits_its_turn(c))
+  // So does an opponent that is to wait for the user (waits_its_turn), or takes no part (stands_aside).
+  if (c.control == Control::Opponent && rt.stream.node() != assets_->idle_node && (waits_its_turn(c) || stands_aside(c)))
     rt.next_decision = std::min(rt.next_decision, time_);
   // A turn toward the goal ends once the goal's bearing has crossed to the other side: played to the end of
   // its gait cycle it would swing the heading past the goal, and the next action would turn back (weaving;
@@ -262,7 +262,7 @@ void World::control(int index) {
     // target motions still follow graph edges.
     const bool stay = (c.control == Control::User && c.reached_goal) ||
                       (c.control == Control::Opponent && c.defeated && (c.goal.empty() || turning_to_step_aside(c))) ||
-                      waits_its_turn(c);
+                      waits_its_turn(c) || stands_aside(c);
     const int wanted = stay ? assets_->idle_node : assets_->core_nodes[static_cast<size_t>(d.motion)];
     if (wanted != rt.stream.node()) {
       rt.begin_fade(c.pose, params_.graph.blend_s);

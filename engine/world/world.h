@@ -464,6 +464,9 @@ class World {
   // the user's facing, may still come its way (rolling_balls.cpp).
   bool waiting_for_kick(const WorldCharacter& c) const;
   bool waits_its_turn(const WorldCharacter& c) const;  // either of the two
+  // An opponent whose strike the set has no clip for (daz43 records no punch) takes no part: it is no one's
+  // source and stands where it is. Fought, it could never be beaten, and the user circled it for good.
+  bool stands_aside(const WorldCharacter& c) const;
   std::optional<glm::vec2> steering_goal(const WorldCharacter& c) const;
   void update_arrival(int index);
   // The COM and support of characters_[index].pose; kinematics_in_scratch: the runtime's synthesis scratch

@@ -41,6 +41,7 @@ std::optional<glm::vec2> World::steering_goal(const WorldCharacter& c) const {
     if (waits_its_turn(c)) return std::nullopt;
     return character_goal(c);
   }
+  if (stands_aside(c)) return std::nullopt;
   // Unattended (auto), the user meets the opponent that is its source, as a player steering with the
   // keys would, until it is defeated (world.h); then the scenario's goal again.
   if (c.control == Control::User && auto_launch_ && c.source_character >= 0) return character_goal(c);
