@@ -60,7 +60,8 @@
 //   distance and strike once the user is within their reach; one struck at counters after the strike
 //   (striking_at); a defeated one steps aside; roots stay kPersonalSpace apart, kFacingSpace facing
 //   (bodies.cpp). An opponent waits while the user crosses an obstacle between them or kicks a ball on its
-//   way (waits_its_turn). A kicked ball bounces off what it meets (rolling_balls.cpp).
+//   way (waits_its_turn); one the set has no strike for stands aside (stands_aside). A kicked ball bounces
+//   off what it meets (rolling_balls.cpp).
 // - No source: the controller is shown one 100 m behind the character, a source it walks away from and
 //   never reaches (beyond the last distance bin, behind), the state in which training learned that
 //   nothing calls for preparation. (One 100 m ahead would share its state with every source beyond the
