@@ -192,6 +192,12 @@ World::RoomShort World::launch_room_short(int obstacle, TargetAction action, glm
   return room;
 }
 
+float World::reach_past_object(TargetAction action) const {
+  const BodyReach& body = assets_->body_reaches[static_cast<size_t>(action)];
+  if (body.z.empty()) return 0.0f;
+  return std::max(*std::max_element(body.z.begin(), body.z.end()) - assets_->target(action).reach, 0.0f);
+}
+
 int World::obstacle_between(glm::vec2 from, glm::vec2 to) const {
   int nearest = -1;
   float nearest_distance = std::numeric_limits<float>::infinity();
@@ -225,11 +231,8 @@ bool World::waiting_beyond_obstacle(const WorldCharacter& c) const {
   if (k < 0) k = obstacle_between(c.position, u.position);
   if (k < 0) return false;
   const WorldObject& o = objects_[static_cast<size_t>(k)];
-  const TargetMotion& crossing = assets_->target(o.spec.action);
-  const BodyReach& body = assets_->body_reaches[static_cast<size_t>(o.spec.action)];
-  const float beyond = body.z.empty() ? 0.0f : std::max(*std::max_element(body.z.begin(), body.z.end()) - crossing.reach, 0.0f);
   const float from_line = std::fabs(glm::dot(c.position - floor_xz(o.position), forward_of(o.spec.heading)));
-  return from_line <= beyond + assets_->target(c.met_with).reach;
+  return from_line <= reach_past_object(o.spec.action) + assets_->target(c.met_with).reach;
 }
 
 int World::ball_before_opponent(int index, float opponent_distance) const {
@@ -268,11 +271,8 @@ bool World::waiting_for_kick(const WorldCharacter& c) const {
   else if (!u.in_target && u.source_object >= 0 && objects_[static_cast<size_t>(u.source_object)].spec.type == ObjectType::Ball)
     ball = u.source_object;
   if (ball < 0) return false;
-  const TargetMotion& kick = assets_->target(TargetAction::Kick);
-  const BodyReach& body = assets_->body_reaches[static_cast<size_t>(TargetAction::Kick)];
-  const float beyond = body.z.empty() ? 0.0f : std::max(*std::max_element(body.z.begin(), body.z.end()) - kick.reach, 0.0f);
   const float from_ball = glm::length(c.position - floor_xz(objects_[static_cast<size_t>(ball)].position));
-  return from_ball <= beyond + assets_->target(c.met_with).reach + 2.0f * kPersonalSpace;
+  return from_ball <= reach_past_object(TargetAction::Kick) + assets_->target(c.met_with).reach + 2.0f * kPersonalSpace;
 }
 
 bool World::waits_its_turn(const WorldCharacter& c) const { return waiting_beyond_obstacle(c) || waiting_for_kick(c); }
@@ -337,30 +337,28 @@ void World::choose_source(int index) {
       c.source_object_position = o.position;
     }
   }
-  if (c.has_source) {
-    // An obstacle between the two is crossed first: the opponent waits beyond it (waiting_beyond_obstacle).
-    const int between = obstacle_between(c.position, c.source_object_position);
-    if (between < 0) {
-      // A ball on the way, reached well before the two meet, is kicked first: the opponent waits
-      // (waiting_for_kick).
-      const int ball = ball_before_opponent(index, glm::length(c.source_object_position - c.position));
-      if (ball >= 0) {
-        c.source_character = -1;
-        c.source_object = ball;
-        c.prepared_for = objects_[static_cast<size_t>(ball)].spec.action;
-        c.source_object_position = floor_xz(objects_[static_cast<size_t>(ball)].position);
-        c.source = launch_point(index, c.source_object_position, c.prepared_for);
-        return;
-      }
-      c.source = launch_point(index, c.source_object_position, c.prepared_for);
-      return;
-    }
-    const WorldObject& o = objects_[static_cast<size_t>(between)];
+  // objects_[k] as the source (in place of an opponent, or the nearest object below).
+  const auto object_source = [&](int k) {
+    const WorldObject& o = objects_[static_cast<size_t>(k)];
     c.source_character = -1;
-    c.source_object = between;
+    c.source_object = k;
     c.prepared_for = o.spec.action;
     c.source_object_position = floor_xz(o.position);
-    c.source = launch_point(index, between);
+    c.source = is_across(o.spec.type) ? launch_point(index, k) : launch_point(index, c.source_object_position, c.prepared_for);
+  };
+  if (c.has_source) {
+    // An obstacle between the two is crossed first: the opponent waits beyond it (waiting_beyond_obstacle).
+    // A ball on the way, reached well before the two meet, is kicked first: the opponent waits
+    // (waiting_for_kick).
+    const int between = obstacle_between(c.position, c.source_object_position);
+    const int ball = between < 0 ? ball_before_opponent(index, glm::length(c.source_object_position - c.position)) : -1;
+    if (between >= 0) {
+      object_source(between);
+    } else if (ball >= 0) {
+      object_source(ball);
+    } else {
+      c.source = launch_point(index, c.source_object_position, c.prepared_for);
+    }
     return;
   }
   // During a cross-fade (out of a target clip, kept preparation) the stream's root has been placed by the
@@ -427,10 +425,7 @@ void World::choose_source(int index) {
       c.source_object_position = p;
     }
   }
-  if (c.has_source) {
-    const WorldObject& o = objects_[static_cast<size_t>(c.source_object)];
-    c.source = is_across(o.spec.type) ? launch_point(index, c.source_object) : launch_point(index, c.source_object_position, c.prepared_for);
-  }
+  if (c.has_source) object_source(c.source_object);
 }
 
 World::Approach World::approach(int index) const {

@@ -451,6 +451,9 @@ class World {
   // `to` crosses (or passes within kBesideEnd of its end), whose clip the set has; -1 if none. A user and an
   // opponent with one between them meet once the user has crossed it.
   int obstacle_between(glm::vec2 from, glm::vec2 to) const;
+  // m: how far the body of `action`'s clip reaches past the object it is launched at (its BodyReach beyond
+  // the clip's reach): an opponent waiting for the user to cross or kick keeps that far off, and more.
+  float reach_past_object(TargetAction action) const;
   // An opponent that waits for the user on its own side of an obstacle between them, with room left for the
   // user's clip to come out of it (World::steering_goal).
   bool waiting_beyond_obstacle(const WorldCharacter& c) const;
