@@ -137,6 +137,10 @@ World::World(const Scenario& scenario, std::shared_ptr<const WorldAssets> assets
     characters_[i].pose = runtime_[i]->stream.pose();
     update_balance(static_cast<int>(i), false);
   }
+  // A character placed into an obstacle starts set out of it, as every tick leaves it: the first frame
+  // shows no body in a rail, and the first tick does not jump it out. (Bodies placed into each other are
+  // shoved apart tick by tick, at a walking pace, as when they meet.)
+  for (int i = 0; i < static_cast<int>(characters_.size()); ++i) keep_clear_of_obstacles(i);
 }
 
 World::~World() = default;

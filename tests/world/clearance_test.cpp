@@ -236,8 +236,12 @@ TEST_CASE("clearance of a body standing in a bar: the penetration, the part and 
   s.objects[0].action = TargetAction::Duck;
   s.objects[0].position = {0.0f, 0.0f};  // through the standing character, rail at 1.2 m: its chest
   s.objects[0].size = {3.0f, 1.2f, 0.1f};
-  World world(s, clearance_test_assets());
-  ClearanceMeter meter(*clearance_test_assets()->set->skeleton);
+  // With bodies kept out of obstacles the world would set it out of the rail before its first frame.
+  Params keep_nothing_clear = load_scenario_params(s);
+  keep_nothing_clear.runtime.keep_clear = false;
+  const auto assets = prepare_world_assets(s, keep_nothing_clear, test::tmp_dir() + "/policy-cache");
+  World world(s, assets);
+  ClearanceMeter meter(*assets->set->skeleton);
   meter.measure(world);
   const CharacterClearance& c = meter.result()[0];
   CHECK(c.object.distance < -0.05f);
@@ -252,6 +256,31 @@ TEST_CASE("clearance of a body standing in a bar: the penetration, the part and 
   meter.measure(apart);
   CHECK(meter.result()[0].object.distance > 0.5f);
   CHECK(meter.result()[0].penetrating.empty());
+}
+
+TEST_CASE("a character placed into an obstacle starts set out of it, before its first frame") {
+  // The user stands where a beam's rail crosses its chest; an opponent 3 m aside has a second beam's rail
+  // through it, turned 30 degrees. The world shows its first frame (no tick yet) with neither body in a rail.
+  Scenario s = shipped("obstacles");
+  s.objects = {placed_object(ObjectType::Beam, TargetAction::Duck, {0.0f, 0.0f}, {3.0f, 1.2f, 0.1f}),
+               placed_object(ObjectType::Beam, TargetAction::Duck, {3.0f, 0.05f}, {2.0f, 1.25f, 0.1f}),
+               placed_object(ObjectType::Opponent, TargetAction::PunchLeft, {3.0f, 0.0f}, glm::vec3(0.0f))};
+  s.objects[1].heading = 0.5235988f;
+  s.objects[2].heading = 3.14159265f;  // facing the user's way
+  std::vector<glm::vec2> placed = {s.characters[0].position, s.objects[2].position};
+  World world(s, clearance_test_assets());
+  REQUIRE(world.time() == 0.0f);
+  REQUIRE(world.characters().size() == 2);
+  ClearanceMeter meter(*clearance_test_assets()->set->skeleton);
+  meter.measure(world);
+  for (size_t i = 0; i < 2; ++i) {
+    const CharacterClearance& c = meter.result()[i];
+    INFO("character " << i << ": " << meter.describe(world, static_cast<int>(i), c.object));
+    CHECK(c.object.distance >= -clearance_metric::kObjectTolerance);
+    CHECK(c.penetrating.empty());
+    // Set out the short way (a rail 0.1 m deep, a chest about 0.3 m): not carried off across the course.
+    CHECK(glm::length(world.characters()[i].position - placed[i]) < 0.6f);
+  }
 }
 
 TEST_CASE("shipped obstacle courses, the kick and the stadium lane: no body deeper than 1 cm in an object, and the foot meets the ball") {
