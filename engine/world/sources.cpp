@@ -224,15 +224,20 @@ bool World::waiting_beyond_obstacle(const WorldCharacter& c) const {
   if (c.control != Control::Opponent || c.defeated || c.source_character < 0) return false;
   const WorldCharacter& u = characters_[static_cast<size_t>(c.source_character)];
   const Runtime& user_rt = *runtime_[static_cast<size_t>(c.source_character)];
-  // The user crossing one now (the obstacle is used from its launch): waited for until it is out of its clip.
-  int k = u.in_target && user_rt.target_object >= 0 && is_across(objects_[static_cast<size_t>(user_rt.target_object)].spec.type)
-              ? user_rt.target_object
-              : -1;
-  if (k < 0) k = obstacle_between(c.position, u.position);
-  if (k < 0) return false;
-  const WorldObject& o = objects_[static_cast<size_t>(k)];
-  const float from_line = std::fabs(glm::dot(c.position - floor_xz(o.position), forward_of(o.spec.heading)));
-  return from_line <= reach_past_object(o.spec.action) + assets_->target(c.met_with).reach;
+  const auto within_room = [&](int k) {
+    if (k < 0) return false;
+    const WorldObject& o = objects_[static_cast<size_t>(k)];
+    const float from_line = std::fabs(glm::dot(c.position - floor_xz(o.position), forward_of(o.spec.heading)));
+    return from_line <= reach_past_object(o.spec.action) + assets_->target(c.met_with).reach;
+  };
+  // The user crossing one now (the obstacle is used from its launch): waited for until it is out of its
+  // clip. And the next one between them is kept to as well: an opponent walking on while the user crosses
+  // an obstacle farther off came up to that one's rail, guard against it, before the user was through.
+  const int crossing = u.in_target && user_rt.target_object >= 0 &&
+                               is_across(objects_[static_cast<size_t>(user_rt.target_object)].spec.type)
+                           ? user_rt.target_object
+                           : -1;
+  return within_room(crossing) || within_room(obstacle_between(c.position, u.position));
 }
 
 int World::ball_before_opponent(int index, float opponent_distance) const {
