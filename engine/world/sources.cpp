@@ -352,15 +352,20 @@ void World::choose_source(int index) {
     c.source = is_across(o.spec.type) ? launch_point(index, k) : launch_point(index, c.source_object_position, c.prepared_for);
   };
   if (c.has_source) {
-    // An obstacle between the two is crossed first: the opponent waits beyond it (waiting_beyond_obstacle).
-    // A ball on the way, reached well before the two meet, is kicked first: the opponent waits
-    // (waiting_for_kick).
+    // A ball on the way, reached well before the two meet (and before an obstacle between them), is kicked
+    // first: the opponent waits (waiting_for_kick). An obstacle between the two is crossed next: the
+    // opponent waits beyond it (waiting_beyond_obstacle).
     const int between = obstacle_between(c.position, c.source_object_position);
-    const int ball = between < 0 ? ball_before_opponent(index, glm::length(c.source_object_position - c.position)) : -1;
-    if (between >= 0) {
-      object_source(between);
-    } else if (ball >= 0) {
+    int ball = ball_before_opponent(index, glm::length(c.source_object_position - c.position));
+    if (ball >= 0 && between >= 0) {
+      const WorldObject& obstacle = objects_[static_cast<size_t>(between)];
+      const float to_line = std::fabs(glm::dot(floor_xz(obstacle.position) - c.position, forward_of(obstacle.spec.heading)));
+      if (glm::length(floor_xz(objects_[static_cast<size_t>(ball)].position) - c.position) >= to_line) ball = -1;
+    }
+    if (ball >= 0) {
       object_source(ball);
+    } else if (between >= 0) {
+      object_source(between);
     } else {
       c.source = launch_point(index, c.source_object_position, c.prepared_for);
     }

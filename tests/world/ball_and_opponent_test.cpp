@@ -1,5 +1,6 @@
 // A ball on the user's way to an opponent that comes at it: the ball is kicked first, the opponent waits
-// for the kick, then the two meet (World::ball_before_opponent, World::waiting_for_kick).
+// for the kick, then the two meet (World::ball_before_opponent, World::waiting_for_kick); with an obstacle
+// between them too, a ball before the obstacle is kicked before it is crossed.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -33,6 +34,30 @@ std::string ball_then_opponent_course(std::mt19937& rng) {
                 "\"goal\": [%.3f, %.3f]}",
                 heading, ball_x, ball_z, punch, opponent_distance * std::sin(bearing), opponent_distance * std::cos(bearing),
                 180.0f + bearing_deg, goal_x, goal_z);
+  return text;
+}
+
+// The user at the origin; a ball 2-3.5 m ahead, 0.6-1.6 m to one side; an obstacle 5-6.5 m ahead turned up
+// to 10 degrees either way; an opponent 3-4.5 m beyond it, facing the user; the goal 2-4 m past the opponent.
+std::string ball_obstacle_then_opponent(std::mt19937& rng) {
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  const char* types[] = {"beam", "bar", "hurdle"};
+  const int type = static_cast<int>(u(rng) * 2.999f);
+  const float height = type == 0 ? 1.3f : type == 1 ? 0.72f : 0.48f;
+  const float side = u(rng) < 0.5f ? -1.0f : 1.0f;
+  const float ball_z = 2.0f + 1.5f * u(rng), ball_x = side * (0.6f + u(rng));
+  const float obstacle_z = 5.0f + 1.5f * u(rng), obstacle_heading = (u(rng) - 0.5f) * 20.0f;
+  const float opponent_z = obstacle_z + 3.0f + 1.5f * u(rng);
+  const char* punch = u(rng) < 0.5f ? "punch_left" : "punch_right";
+  char text[1400];
+  std::snprintf(text, sizeof text,
+                "{\"auto\": true, \"characters\": [{\"position\": [0, 0], \"heading\": 0, \"control\": \"user\"}], "
+                "\"objects\": [{\"type\": \"ball\", \"position\": [%.3f, %.3f], \"size\": [0.22, 0.22, 0.22]}, "
+                "{\"type\": \"%s\", \"position\": [0.0, %.3f], \"heading\": %.2f, \"size\": [2.0, %.2f, 0.06]}, "
+                "{\"type\": \"opponent\", \"action\": \"%s\", \"position\": [0.2, %.3f], \"heading\": 180}], "
+                "\"goal\": [0.5, %.3f]}",
+                ball_x, ball_z, types[type], obstacle_z, obstacle_heading, height, punch, opponent_z,
+                opponent_z + 2.0f + 2.0f * u(rng));
   return text;
 }
 
@@ -82,4 +107,31 @@ TEST_CASE("a ball on the way to an opponent is kicked first, the opponent waitin
   }
   MESSAGE(kicked_first << " of 8 balls kicked before the punch; " << waited << " opponents stood waiting for the kick");
   CHECK(waited >= 1);  // the courses include opponents near enough to have to wait (the check above bites)
+}
+
+TEST_CASE("a ball before an obstacle between the user and an opponent is kicked before the obstacle is crossed") {
+  std::mt19937 rng(3);
+  for (int k = 0; k < 6; ++k) {
+    const std::string text = ball_obstacle_then_opponent(rng);
+    CAPTURE(text);
+    World world(parse_scenario(text, "ball-obstacle-then-opponent"), test::builtin_assets());
+    ClearanceLog log(world);
+    const int user = world.user(), opponent = user == 0 ? 1 : 0;
+    world.run_until_done(45.0f, 1.0f, [&](const World& w) { log.observe(w); });
+    CHECK(world.goal_reached());
+    CHECK(world.characters()[static_cast<size_t>(opponent)].defeated);
+    // Kicked, and first: the crossing and the punch come after it.
+    CHECK(world.objects()[0].used);
+    float kick = -1.0f, crossing = -1.0f;
+    for (const LaunchRecord& r : world.launches()) {
+      if (r.character != user) continue;
+      if (r.action == TargetAction::Kick && kick < 0.0f) kick = r.time;
+      if (r.action != TargetAction::Kick && r.action != TargetAction::PunchLeft && r.action != TargetAction::PunchRight &&
+          crossing < 0.0f)
+        crossing = r.time;
+    }
+    CHECK(kick >= 0.0f);
+    CHECK(crossing > kick);
+    CHECK(log.summary.object_frames == 0);
+  }
 }
