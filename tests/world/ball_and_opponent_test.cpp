@@ -61,6 +61,26 @@ std::string ball_obstacle_then_opponent(std::mt19937& rng) {
   return text;
 }
 
+// The user at the origin; an opponent 4-5 m to one side and 8-9 m ahead, coming at it; a ball 4.8-5.6 m
+// ahead, 0.2-1 m to the other side (farther than halfway to the opponent: the fight comes first); the goal
+// 11-12 m ahead.
+std::string opponent_aside_then_ball(std::mt19937& rng) {
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  const float side = u(rng) < 0.5f ? -1.0f : 1.0f;
+  const float opponent_x = side * (4.0f + u(rng)), opponent_z = 8.0f + u(rng);
+  const float facing_user = std::atan2(-opponent_x, -opponent_z) * 180.0f / 3.14159265f;
+  const float ball_x = -side * (0.2f + 0.8f * u(rng)), ball_z = 4.8f + 0.8f * u(rng);
+  const char* punch = u(rng) < 0.5f ? "punch_left" : "punch_right";
+  char text[1024];
+  std::snprintf(text, sizeof text,
+                "{\"auto\": true, \"characters\": [{\"position\": [0, 0], \"heading\": 0, \"control\": \"user\"}], "
+                "\"objects\": [{\"type\": \"ball\", \"position\": [%.3f, %.3f], \"size\": [0.22, 0.22, 0.22]}, "
+                "{\"type\": \"opponent\", \"action\": \"%s\", \"position\": [%.3f, %.3f], \"heading\": %.2f}], "
+                "\"goal\": [0.0, %.3f]}",
+                ball_x, ball_z, punch, opponent_x, opponent_z, facing_user, 11.0f + u(rng));
+  return text;
+}
+
 }  // namespace
 
 TEST_CASE("a ball on the way to an opponent is kicked first, the opponent waiting for the kick, then the two meet") {
@@ -132,6 +152,24 @@ TEST_CASE("a ball before an obstacle between the user and an opponent is kicked 
     }
     CHECK(kick >= 0.0f);
     CHECK(crossing > kick);
+    CHECK(log.summary.object_frames == 0);
+  }
+}
+
+TEST_CASE("a ball beside the user after a fight, on its way to the goal, is still kicked") {
+  // The fight leaves the user facing where the opponent stood, the ball to its side or behind its facing,
+  // though still on its way to the goal.
+  std::mt19937 rng(23);
+  for (int k = 0; k < 10; ++k) {
+    const std::string text = opponent_aside_then_ball(rng);
+    CAPTURE(text);
+    World world(parse_scenario(text, "opponent-aside-then-ball"), test::builtin_assets());
+    ClearanceLog log(world);
+    const int opponent = world.user() == 0 ? 1 : 0;
+    world.run_until_done(45.0f, 1.0f, [&](const World& w) { log.observe(w); });
+    CHECK(world.goal_reached());
+    CHECK(world.characters()[static_cast<size_t>(opponent)].defeated);
+    CHECK(world.objects()[0].used);
     CHECK(log.summary.object_frames == 0);
   }
 }
