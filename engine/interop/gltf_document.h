@@ -247,8 +247,9 @@ struct Channel {
   glm::dvec4 sample(double t) const {
     const size_t n = times.size();
     auto value = [&](size_t k) { return interp == kCubic ? values[3 * k + 1] : values[k]; };
-    if (n == 1 || t <= times.front()) return value(0);
-    if (t >= times.back()) return value(n - 1);
+    // Written so that a time that is not a number takes the first key rather than reading past the last.
+    if (n == 1 || !(t > times.front())) return value(0);
+    if (!(t < times.back())) return value(n - 1);
     const size_t k1 = static_cast<size_t>(std::upper_bound(times.begin(), times.end(), t) - times.begin());
     const size_t k0 = k1 - 1;
     const double dt = times[k1] - times[k0];

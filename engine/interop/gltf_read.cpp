@@ -116,14 +116,15 @@ Clip build_clip(const tinygltf::Model& model, size_t anim_index, const std::vect
       bool regular = dt > 0.0;
       for (size_t k = 1; k < n && regular; ++k)
         regular = std::fabs(densest->times[k] - densest->times[k - 1] - dt) <= 1e-3 * dt + 1e-6;
-      if (regular) {
+      // Keys at least a second apart are not a frame rate: those are resampled at the default.
+      if (regular && dt <= 1.0) {
         fps = 1.0 / dt;
         if (std::fabs(fps - std::round(fps)) < 1e-2) fps = std::round(fps);
       }
     }
   }
   const double span = (t1 - t0) * fps;
-  if (span > 1e6) rd.fail("animations[" + num(anim_index) + "]: " + std::to_string(t1 - t0) + " s is too long to resample");
+  if (!(span <= 1e6)) rd.fail("animations[" + num(anim_index) + "]: " + std::to_string(t1 - t0) + " s is too long to resample");
   const size_t frames = static_cast<size_t>(std::llround(span)) + 1;
   clip.fps = static_cast<float>(fps);
   clip.frames.reserve(frames);

@@ -16,8 +16,8 @@ out_dir = os.path.join(here, "corpus", "gltf")
 FLOAT, UBYTE, USHORT, UINT = 5126, 5121, 5123, 5125
 
 
-def rig():
-    """The valid rig: its JSON (without buffers) and its binary buffer."""
+def rig(key_times=(0.0, 0.5)):
+    """The valid rig: its JSON (without buffers) and its binary buffer; its two animation keys at key_times."""
     blob = b""
     views, accessors = [], []
 
@@ -40,7 +40,7 @@ def rig():
     indices = add(struct.pack("<3H", 0, 1, 2), None, 3, USHORT, "SCALAR")
     ident = lambda ty: f(1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, -ty, 0, 1)
     ibm = add(ident(1.0) + ident(1.3), None, 2, FLOAT, "MAT4")
-    times = add(f(0.0, 0.5), None, 2, FLOAT, "SCALAR", {"min": [0.0], "max": [0.5]})
+    times = add(f(*key_times), None, 2, FLOAT, "SCALAR", {"min": [key_times[0]], "max": [key_times[1]]})
     rots = add(f(0, 0, 0, 1, 0.0998, 0, 0, 0.995), None, 2, FLOAT, "VEC4")
     moves = add(f(0, 1.0, 0, 0, 1.0, 0.2), None, 2, FLOAT, "VEC3")
     doc = {
@@ -165,7 +165,9 @@ def main():
              "huge_buffer_length.glb": as_glb(doc, blob, declared_length=4294967295),
              "huge_buffer_uri.gltf": as_gltf(doc, blob).replace(b'"byteLength":%d' % len(blob), b'"byteLength":9007199254740991'),
              "glb_chunk_too_long.glb": as_glb(doc, blob)[:12] + struct.pack("<I", 4000000000) + as_glb(doc, blob)[16:],
-             "glb_truncated.glb": as_glb(doc, blob)[:200]}
+             "glb_truncated.glb": as_glb(doc, blob)[:200],
+             # Keys 6.8e22 s apart: their spacing, as a frame rate, rounded to 0 frames/s.
+             "anim_keys_far_apart.gltf": as_gltf(*rig(key_times=(0.0, 6.8e22)))}
     for name, edit in variants(doc):
         d = copy.deepcopy(doc)
         edit(d)

@@ -297,6 +297,29 @@ TEST_CASE("Malformed glTF files give a clear error naming the file and the field
   }
 }
 
+TEST_CASE("animation keys too far apart to resample are refused, naming the file and the animation") {
+  // Found by the glTF fuzz target (the input is in its corpus): two keys 6.8e22 s apart. Their spacing as a
+  // frame rate, 1.5e-23 frames/s, was rounded to 0, and every resampled time became 0/0: the channel
+  // sampler then read past its last key. Keys farther apart than a second are resampled at the default
+  // 30 frames/s instead, so this animation is 2e24 frames long, and refused.
+  const std::string path = test::repo() + "/tests/fuzz/corpus/gltf/anim_keys_far_apart.gltf";
+  std::string error = "(no error)";
+  try {
+    read_gltf(path);
+  } catch (const InputError& e) {
+    error = e.what();
+  }
+  CHECK(contains(error, "anim_keys_far_apart.gltf"));
+  CHECK(contains(error, "animations[0]: "));
+  CHECK(contains(error, "too long to resample"));
+  // The seed it was made from (keys 0.5 s apart) still reads at its keys' own rate.
+  const std::vector<GltfCharacter> rig = read_gltf(test::repo() + "/tests/fuzz/corpus/gltf/rig.gltf");
+  REQUIRE(rig.size() == 1);
+  REQUIRE(rig[0].clips.size() == 1);
+  CHECK(rig[0].clips[0].fps == doctest::Approx(2.0f));
+  CHECK(rig[0].clips[0].frame_count() == 2);
+}
+
 TEST_CASE("load_character_mesh binds the committed character to the built-in skeleton") {
   const auto skeleton = builtin_skeleton();
   const std::string path = test::repo() + "/assets/character.glb";
