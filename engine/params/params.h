@@ -209,7 +209,8 @@ struct RuntimeParams {
   // is rewarded for the goal alone (Eq. 14-17): it walked on toward a goal to one side of a ball and left the
   // ball on the other, even after turning to it and preparing (22 of 24 generated balls 25-55 degrees to
   // one side, the goal to the other; on the random built-in courses 1-9 objects of each set of 200 were
-  // never acted on, and none are with it).
+  // never acted on, and none are with it). With it, too, a ball on the way to the goal is not passed as
+  // behind a character turned off its way (a fight leaves it facing where the opponent stood).
   bool make_for_ball_source = true;
   // Bodies kept out of obstacles: a body that has gone into an obstacle it is not crossing with a target
   // motion (a leg swung into a hurdle's board by a turn just after it, a head walked into a rail) is set

@@ -419,8 +419,10 @@ void World::choose_source(int index) {
       distance = glm::length(d);
     }
     // Behind: not in the facing direction. A ball on the way to the goal is not behind, though: a character
-    // turned off its way (as a fight leaves it, facing where the opponent stood) still passes it.
-    const bool on_way = !is_across(o.spec.type) && !c.goal.empty() && glm::dot(d, c.goal.front() - c.position) > 0.0f;
+    // turned off its way (as a fight leaves it, facing where the opponent stood) still passes it
+    // (RuntimeParams::make_for_ball_source).
+    const bool on_way = params_.runtime.make_for_ball_source && !is_across(o.spec.type) && !c.goal.empty() &&
+                        glm::dot(d, c.goal.front() - c.position) > 0.0f;
     if (!kept && glm::dot(d, fwd) <= 0.0f && !on_way) continue;
     // Walked along to a launch place away from its middle (launch_lateral), an obstacle's middle falls
     // behind while its launch point still lies ahead: the launch point counts too.
