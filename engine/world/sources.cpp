@@ -49,6 +49,11 @@ std::optional<float> crossing_lateral(glm::vec2 from, glm::vec2 to, glm::vec2 p,
   return glm::dot(x - p, along);
 }
 
+// How far `p` is from an obstacle's line, along its crossing direction.
+float from_line(const WorldObject& o, glm::vec2 p) {
+  return std::fabs(glm::dot(p - floor_xz(o.position), forward_of(o.spec.heading)));
+}
+
 }  // namespace
 
 // The launch point for an action at an object: where the character stands when the action's clip, entered
@@ -207,7 +212,7 @@ int World::obstacle_between(glm::vec2 from, glm::vec2 to) const {
     const glm::vec2 p = floor_xz(o.position);
     const std::optional<float> cross = crossing_lateral(from, to, p, o.spec.heading);
     if (!cross || std::fabs(*cross) > 0.5f * o.spec.size.x + kBesideEnd) continue;
-    const float distance = std::fabs(glm::dot(p - from, forward_of(o.spec.heading)));
+    const float distance = from_line(o, from);
     if (distance < nearest_distance) {
       nearest_distance = distance;
       nearest = k;
@@ -227,8 +232,7 @@ bool World::waiting_beyond_obstacle(const WorldCharacter& c) const {
   const auto within_room = [&](int k) {
     if (k < 0) return false;
     const WorldObject& o = objects_[static_cast<size_t>(k)];
-    const float from_line = std::fabs(glm::dot(c.position - floor_xz(o.position), forward_of(o.spec.heading)));
-    return from_line <= reach_past_object(o.spec.action) + assets_->target(c.met_with).reach;
+    return from_line(o, c.position) <= reach_past_object(o.spec.action) + assets_->target(c.met_with).reach;
   };
   // The user crossing one now (the obstacle is used from its launch): waited for until it is out of its
   // clip. And the next one between them is kept to as well: an opponent walking on while the user crosses
@@ -357,11 +361,10 @@ void World::choose_source(int index) {
     // opponent waits beyond it (waiting_beyond_obstacle).
     const int between = obstacle_between(c.position, c.source_object_position);
     int ball = ball_before_opponent(index, glm::length(c.source_object_position - c.position));
-    if (ball >= 0 && between >= 0) {
-      const WorldObject& obstacle = objects_[static_cast<size_t>(between)];
-      const float to_line = std::fabs(glm::dot(floor_xz(obstacle.position) - c.position, forward_of(obstacle.spec.heading)));
-      if (glm::length(floor_xz(objects_[static_cast<size_t>(ball)].position) - c.position) >= to_line) ball = -1;
-    }
+    if (ball >= 0 && between >= 0 &&
+        glm::length(floor_xz(objects_[static_cast<size_t>(ball)].position) - c.position) >=
+            from_line(objects_[static_cast<size_t>(between)], c.position))
+      ball = -1;
     if (ball >= 0) {
       object_source(ball);
     } else if (between >= 0) {

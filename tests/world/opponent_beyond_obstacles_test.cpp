@@ -2,6 +2,7 @@
 // user crosses the farther one, and never walks up to a rail it would stand in (World::waiting_beyond_obstacle).
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <random>
