@@ -151,7 +151,7 @@ World::RoomShort World::launch_room_short(int obstacle, TargetAction action, glm
   const glm::vec2 along = left_of(o.spec.heading);
   for (size_t k = 0; k < objects_.size(); ++k) {
     const WorldObject& next = objects_[k];
-    if (static_cast<int>(k) == obstacle || next.used || !is_across(next.spec.type)) continue;
+    if (static_cast<int>(k) == obstacle || !is_across(next.spec.type)) continue;
     const glm::vec2 p2 = floor_xz(next.position), n2 = forward_of(next.spec.heading), along2 = left_of(next.spec.heading);
     const float cosine = glm::dot(n, n2);
     if (std::fabs(cosine) < 0.2f) continue;  // all but parallel to the way across: not crossed on it
