@@ -136,6 +136,49 @@ void World::defeat(int opponent, int striker) {
   o.goal = {spot};
 }
 
+int World::body_on_crossing(int index, int obstacle) const {
+  const WorldCharacter& c = characters_[static_cast<size_t>(index)];
+  const WorldObject& o = objects_[static_cast<size_t>(obstacle)];
+  const BodyReach& body = assets_->body_reaches[static_cast<size_t>(o.spec.action)];
+  const glm::vec2 object = floor_xz(o.position);
+  glm::vec2 n = forward_of(o.spec.heading);
+  if (glm::dot(object - c.position, n) < 0.0f) n = -n;
+  const glm::vec2 across(n.y, -n.x);
+  const float to_line = glm::dot(object - c.position, n);
+  // The clip's body sweeps body.half_width to either side of the character's line; a standing body reaches
+  // kStandingRadius around its root.
+  const float half_width = body.half_width + kStandingRadius;
+  int nearest = -1;
+  float nearest_along = std::numeric_limits<float>::infinity();
+  for (size_t j = 0; j < characters_.size(); ++j) {
+    const WorldCharacter& other = characters_[j];
+    if (static_cast<int>(j) == index || other.in_target) continue;
+    const glm::vec2 d = other.position - c.position;
+    const float along = glm::dot(d, n);
+    if (along <= 0.0f || along > to_line + kStandingRadius || std::fabs(glm::dot(d, across)) > half_width) continue;
+    if (along < nearest_along) {
+      nearest_along = along;
+      nearest = static_cast<int>(j);
+    }
+  }
+  return nearest;
+}
+
+void World::make_way(int standing, int crossing, int obstacle) {
+  WorldCharacter& s = characters_[static_cast<size_t>(standing)];
+  if (s.control != Control::Opponent || !s.defeated) return;  // the others have ways of their own
+  const WorldCharacter& c = characters_[static_cast<size_t>(crossing)];
+  const WorldObject& o = objects_[static_cast<size_t>(obstacle)];
+  glm::vec2 n = forward_of(o.spec.heading);
+  if (glm::dot(floor_xz(o.position) - c.position, n) < 0.0f) n = -n;
+  const glm::vec2 across(n.y, -n.x);
+  const float lateral = glm::dot(s.position - c.position, across);
+  // Out of the swept width on the side it already leans to, by a stride more.
+  const float half_width = assets_->body_reaches[static_cast<size_t>(o.spec.action)].half_width + kStandingRadius;
+  const float side = lateral >= 0.0f ? 1.0f : -1.0f;
+  s.goal = {s.position + (side * (half_width + kMakeWayMargin) - lateral) * across};
+}
+
 // Bodies never pass through obstacles. A body that has gone into an obstacle's solids (a trailing leg swung
 // into a hurdle's board by a turn just after the jump, a head walked into a rail) is set back out along the
 // obstacle's crossing direction, to the root's side, by the depth: as a wall stops a body, not as a

@@ -437,6 +437,15 @@ void World::try_auto_launch(int index) {
   // that stands still not square launches anyway, the rest of the turn taken in the launch (start_target).
   Runtime& rt = *runtime_[static_cast<size_t>(index)];
   if (preparation_ && !rt.square && rt.speed > kStandingSpeed) return;
+  // Someone standing between the character and the obstacle: launched, the clip would run into them. The
+  // character waits on its launch point, as a person would, and a beaten opponent standing there steps aside.
+  if (c.source_object >= 0 && is_across(objects_[static_cast<size_t>(c.source_object)].spec.type)) {
+    const int standing = body_on_crossing(index, c.source_object);
+    if (standing >= 0) {
+      make_way(standing, index, c.source_object);
+      return;
+    }
+  }
   if (start_target(index, c.prepared_for, c.source_object, c.source_character, true) && c.control == Control::Opponent)
     c.last_attack = time_;
 }
@@ -482,7 +491,7 @@ bool World::release_for_next_source(int index) {
   // is entered now, at the frame that has come as far, rather than rising into the walk in between.
   const Approach next = approach(index);
   if (next.to_launch <= 0.0f && next.ahead && c.source_object >= 0 && is_across(objects_[static_cast<size_t>(c.source_object)].spec.type) &&
-      (c.control != Control::User || auto_launch_)) {
+      (c.control != Control::User || auto_launch_) && body_on_crossing(index, c.source_object) < 0) {
     c.to_launch = next.to_launch;
     if (start_target(index, c.prepared_for, c.source_object, -1, true)) return true;
     c.in_target = false;

@@ -167,6 +167,10 @@ constexpr float kBodyGap = 0.03f;
 constexpr float kLaunchPointNear = 0.5f;
 // m: a defeated opponent steps this far aside, out of the user's way (World::defeat).
 constexpr float kStepAside = 2.0f;
+// m: a character standing reaches about this far around its root on the floor (World::body_on_crossing).
+constexpr float kStandingRadius = 0.3f;
+// m: stepping out of someone's way across an obstacle, a character leaves this much more (World::make_way).
+constexpr float kMakeWayMargin = 0.5f;
 // rad: it turns where it stands until its way aside is within this of its facing (World::turning_to_step_aside).
 constexpr float kStepAsideTurn = 30.0f * 3.14159265f / 180.0f;
 
@@ -443,6 +447,12 @@ class World {
   void try_auto_launch(int index);
   void update_goal(int index);
   void defeat(int opponent, int striker);
+  // Another character standing on the way from character `index` to the across obstacle objects_[obstacle]
+  // (between it and the obstacle's line, within the width the obstacle's clip sweeps): the clip, launched,
+  // would run into that body. The nearest such, or -1.
+  int body_on_crossing(int index, int obstacle) const;
+  // A defeated opponent standing on someone's way across an obstacle steps out of it, sideways.
+  void make_way(int standing, int crossing, int obstacle);
   // `striker` plays a strike at `target` that has not landed, or landed less than kStrikeRecovery ago.
   bool striking_at(int striker, int target) const;
   static glm::vec2 character_goal(const WorldCharacter& c);

@@ -1,5 +1,5 @@
-// The way across an obstacle: what stands beyond it, met from any side, as a user steering with the keys
-// meets it (World::launch_room_short).
+// The way across an obstacle: what stands beyond it and on the way to it, met from any side, as a user
+// steering with the keys meets it (World::launch_room_short, World::body_on_crossing, World::make_way).
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -50,5 +50,78 @@ TEST_CASE("crossing back over two close obstacles, the crawl keeps room from the
     CHECK(jumps == 2);
     CHECK(log.summary.object_frames == 0);
     CHECK(log.summary.min_object >= -clearance_metric::kObjectTolerance);
+  }
+}
+
+namespace {
+
+// A user at the origin going to (0, 4.5) and an opponent coming at it from (opponent_x, 2.8); optionally a
+// bar beside the fight, 8 m long, its crossing along x.
+std::string fight_beside_bar(float opponent_x, const glm::vec2* bar) {
+  char objects[400];
+  std::snprintf(objects, sizeof objects,
+                "{\"type\": \"opponent\", \"action\": \"punch_right\", \"position\": [%.2f, 2.8], \"heading\": 180}", opponent_x);
+  std::string text = std::string("{\"auto\": true, \"characters\": [{\"position\": [0, 0], \"heading\": 0, \"control\": \"user\"}], ") +
+                     "\"objects\": [" + objects;
+  if (bar) {
+    char rail[300];
+    std::snprintf(rail, sizeof rail,
+                  ", {\"type\": \"bar\", \"action\": \"crawl\", \"position\": [%.3f, %.3f], \"heading\": 90, \"size\": [8.0, 0.72, 0.08]}",
+                  bar->x, bar->y);
+    text += rail;
+  }
+  return text + "], \"goal\": [0.0, 4.5]}";
+}
+
+// Steps the world until the opponent (character 1) is beaten and has finished stepping aside.
+void fight(World& world, ClearanceLog* log) {
+  const WorldCharacter& o = world.characters()[1];
+  for (int t = 0; t < 60 * 40 && !(o.defeated && o.goal.empty()); ++t) {
+    world.step();
+    if (log) log->observe(world);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("a beaten opponent standing on the user's way to a bar steps aside before the user crawls under it") {
+  // After the fight the user is steered (as with the keys) to stand beside where the beaten opponent
+  // stopped and on to a goal beyond a bar 0.5 m behind it, straight through the place it stands. Without
+  // the wait and the step aside the crawl was launched into it and the bodies overlapped while it was pushed
+  // out of the way.
+  for (const float opponent_x : {0.3f, -0.3f}) {
+    // Where the beaten opponent stops, found without the bar; the bar beside the fight leaves it as it is.
+    World alone(parse_scenario(fight_beside_bar(opponent_x, nullptr), "fight"), test::builtin_assets());
+    fight(alone, nullptr);
+    REQUIRE(alone.characters()[1].defeated);
+    const glm::vec2 stands = alone.characters()[1].position;
+    const glm::vec2 bar = stands - glm::vec2(0.5f, 0.0f);
+    const std::string text = fight_beside_bar(opponent_x, &bar);
+    CAPTURE(text);
+    World world(parse_scenario(text, "beaten-on-the-way"), test::builtin_assets());
+    REQUIRE(world.user() == 0);
+    ClearanceLog log(world);
+    fight(world, &log);
+    const auto& characters = world.characters();
+    REQUIRE(characters[1].defeated);
+    REQUIRE(glm::length(characters[1].position - stands) < 0.05f);
+    // Beside it on the far side from the bar, then across the bar through where it stands.
+    world.set_goal(stands + glm::vec2(1.3f, 0.0f));
+    for (int t = 0; t < 60 * 20 && !world.goal_reached(); ++t) {
+      world.step();
+      log.observe(world);
+    }
+    REQUIRE(world.goal_reached());
+    world.set_goal(stands - glm::vec2(3.5f, 0.0f));
+    for (int t = 0; t < 60 * 40 && !world.goal_reached(); ++t) {
+      world.step();
+      log.observe(world);
+    }
+    CHECK(world.goal_reached());
+    CHECK(world.objects()[1].used);  // crawled under, not walked round
+    CHECK(log.summary.character_frames == 0);
+    CHECK(log.summary.min_character >= -clearance_metric::kCharacterTolerance);
+    // It stepped out of the crawl's way, along the bar.
+    CHECK(std::fabs(characters[1].position.y - stands.y) > 0.5f);
   }
 }
