@@ -388,13 +388,16 @@ void World::choose_source(int index) {
     if (o.spec.type == ObjectType::Opponent || assets_->target(o.spec.action).clip < 0) continue;
     const glm::vec2 p = floor_xz(o.position), d = p - c.position;
     // An obstacle crossed is crossed again when the way on leads back over it (a waypoint reached on its far
-    // side): the character stands on the other side from its launch, the goal on the side it came from. A
-    // crossing that ended where it began is not tried again (world.h); a ball kicked or an opponent beaten
-    // is done with.
+    // side): the character stands on the other side from its launch, the goal on the side it came from. So
+    // is one it was carried across and has come back round to (steered round its end): the goal lies
+    // beyond it again. A crossing that ended where it began is not tried again (world.h); a ball kicked or
+    // an opponent beaten is done with.
     if (o.used) {
       const float own_side = glm::dot(c.position - p, forward_of(o.spec.heading));
       const bool crossed = o.launched_from * own_side < 0.0f;
-      if (!(is_across(o.spec.type) && crossed && !c.goal.empty() &&
+      if (is_across(o.spec.type) && c.control == Control::User && o.launched_from * own_side < -kCarriedAcross)
+        objects_[static_cast<size_t>(k)].carried_across = true;
+      if (!(is_across(o.spec.type) && (crossed || o.carried_across) && !c.goal.empty() &&
             glm::dot(c.goal.front() - p, forward_of(o.spec.heading)) * own_side < 0.0f))
         continue;
     }

@@ -310,6 +310,7 @@ bool World::start_target(int index, TargetAction action, int object, int target_
     WorldObject& o = objects_[static_cast<size_t>(object)];
     o.used = true;
     o.launched_from = glm::dot(c.position - floor_xz(o.position), forward_of(o.spec.heading)) >= 0.0f ? 1.0f : -1.0f;
+    o.carried_across = false;
   }
 
   // Enter the target clip at T_p, where the prepared character stands and faces; then back to walking.

@@ -167,6 +167,9 @@ constexpr float kBodyGap = 0.03f;
 constexpr float kLaunchPointNear = 0.5f;
 // m: a defeated opponent steps this far aside, out of the user's way (World::defeat).
 constexpr float kStepAside = 2.0f;
+// m: a character this far past an obstacle's line from the side it launched at it from has been carried
+// across (WorldObject::carried_across): clear of the rail and of a root that ends under it.
+constexpr float kCarriedAcross = 0.5f;
 // m: a character standing reaches about this far around its root on the floor (World::body_on_crossing).
 constexpr float kStandingRadius = 0.3f;
 // m: stepping out of someone's way across an obstacle, a character leaves this much more (World::make_way).
@@ -245,8 +248,10 @@ struct WorldObject {
   glm::vec3 position{0.0f};   // where it stands now (a kicked ball rolls)
   glm::vec2 velocity{0.0f};   // m/s on the floor (a kicked ball)
   bool used = false;          // its action was launched at it
-  // Across obstacles: the side (+1 along its crossing direction, -1 against) of its last launch.
+  // Across obstacles: the side (+1 along its crossing direction, -1 against) of its last launch, and whether
+  // the character has since stood clear on the far side (the clip carried it across).
   float launched_from = 0.0f;
+  bool carried_across = false;
   int character = -1;         // for opponents: the character it is
 };
 

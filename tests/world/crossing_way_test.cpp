@@ -1,5 +1,6 @@
-// The way across an obstacle: what stands beyond it and on the way to it, met from any side, as a user
-// steering with the keys meets it (World::launch_room_short, World::body_on_crossing, World::make_way).
+// The way across an obstacle: what stands beyond it and on the way to it, met from any side and again, as a
+// user steering with the keys meets it (World::launch_room_short, World::body_on_crossing, World::make_way,
+// WorldObject::carried_across).
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -123,5 +124,28 @@ TEST_CASE("a beaten opponent standing on the user's way to a bar steps aside bef
     CHECK(log.summary.min_character >= -clearance_metric::kCharacterTolerance);
     // It stepped out of the crawl's way, along the bar.
     CHECK(std::fabs(characters[1].position.y - stands.y) > 0.5f);
+  }
+}
+
+TEST_CASE("an obstacle jumped, then walked back round, is jumped again on the way over it once more") {
+  // Waypoints take the user over a hurdle, round its end back to the side it started from, and over it
+  // again. A crossing that ended where it began is not tried again, and the user, back on its first side,
+  // was taken for one: the hurdle was no source, and the user walked into its board for the 35 s left.
+  for (const float end_x : {2.8f, -2.8f}) {
+    char text[700];
+    std::snprintf(text, sizeof text,
+                  "{\"auto\": true, \"characters\": [{\"position\": [0, 0], \"heading\": 0, \"control\": \"user\"}], "
+                  "\"objects\": [{\"type\": \"hurdle\", \"action\": \"jump\", \"position\": [0.0, 4.0], \"heading\": 0, "
+                  "\"size\": [3.0, 0.45, 0.1]}], \"goal\": [[0.0, 6.5], [%.2f, 4.0], [%.2f, 1.5], [%.2f, 7.5]]}",
+                  end_x, 0.36f * end_x, 0.1f * end_x);
+    CAPTURE(text);
+    World world(parse_scenario(text, "over-round-over"), test::builtin_assets());
+    ClearanceLog log(world);
+    world.run_until_done(60.0f, 1.0f, [&](const World& w) { log.observe(w); });
+    CHECK(world.goal_reached());
+    int jumps = 0;
+    for (const LaunchRecord& l : world.launches()) jumps += l.action == TargetAction::Jump;
+    CHECK(jumps == 2);
+    CHECK(log.summary.object_frames == 0);
   }
 }
