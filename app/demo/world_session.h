@@ -29,6 +29,7 @@
 
 #include "app/render/scene.h"
 #include "engine/params/params.h"
+#include "engine/world/key_player.h"
 #include "engine/world/policy_cache.h"
 #include "engine/world/world.h"
 
@@ -77,9 +78,7 @@ class WorldSession {
   static constexpr int kMaxTicksPerFrame = 6;      // 0.1 s of simulation per frame at most
   static constexpr double kRetrainDelay = 0.5;     // s of wall time after the last policy-relevant change
   static constexpr size_t kSampleHistory = 600;    // ticks kept for the plots (10 s at 60 Hz)
-  // m the steered goal leads the character: beyond the goal radius and the stopping distance of a walk,
-  // so the controller keeps walking, and short enough that letting go stops the character soon.
-  static constexpr float kSteerLead = 1.8f;
+  static constexpr float kSteerLead = prep::kSteerLead;  // m the steered goal leads (engine/world/key_player.h)
 
   explicit WorldSession(SessionOptions options = {});
   ~WorldSession();

@@ -286,4 +286,17 @@ nlohmann::json clearance_json(const ClearanceSummary& s) {
           {"min_character", s.min_character_what}};
 }
 
+std::string clearance_text(const ClearanceSummary& s) {
+  const auto nearest = [](float metres, const std::string& what) {
+    if (!std::isfinite(metres)) return std::string("none near");
+    char text[64];
+    std::snprintf(text, sizeof text, "%.1f cm", 100.0f * metres);
+    return std::string(text) + (what.empty() ? "" : ": " + what);
+  };
+  return "clearance over " + std::to_string(s.frames) + " frames: " + std::to_string(s.object_frames) +
+         " with a body in an object, " + std::to_string(s.character_frames) + " with two bodies overlapping\n" +
+         "  nearest to an object " + nearest(s.min_object, s.min_object_what) + "\n" + "  nearest to another body " +
+         nearest(s.min_character, s.min_character_what) + "\n";
+}
+
 }  // namespace prep

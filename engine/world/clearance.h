@@ -113,6 +113,8 @@ struct ClearanceSummary {
   std::string min_object_what, min_character_what;              // who and what, and when
 };
 nlohmann::json clearance_json(const ClearanceSummary& s);
+// For a person: the frames deeper than the tolerances, and the nearest approaches with what they were.
+std::string clearance_text(const ClearanceSummary& s);
 
 class ClearanceLog {
  public:
