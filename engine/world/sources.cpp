@@ -154,6 +154,26 @@ World::RoomShort World::launch_room_short(int obstacle, TargetAction action, glm
     if (static_cast<int>(k) == obstacle || !is_across(next.spec.type)) continue;
     const glm::vec2 p2 = floor_xz(next.position), n2 = forward_of(next.spec.heading), along2 = left_of(next.spec.heading);
     const float cosine = glm::dot(n, n2);
+    // The upright ends of another obstacle (posts, a hurdle's legs and feet) standing in the clip's way on
+    // this side of the crossing, or beyond it where that obstacle runs all but parallel to the way across (the
+    // lines below do not meet it): the body crawls or ducks past them within its width. Short by as much as
+    // the launch must move aside to pass them.
+    {
+      const glm::vec2 root = floor_xz(o.position) + lateral * along - reach * n;  // the T_p root
+      const ObjectFrame frame(p2, next.spec.heading);
+      const float farthest = std::fabs(cosine) < 0.2f ? body_farthest : reach;
+      for (const ObjectSolid& solid : solids_[k]) {
+        if (solid.part != SolidPart::Post && solid.part != SolidPart::Leg && solid.part != SolidPart::Foot) continue;
+        const glm::vec2 centre = p2 + glm::vec2(frame.cos_heading * solid.centre.x + frame.sin_heading * solid.centre.z,
+                                                -frame.sin_heading * solid.centre.x + frame.cos_heading * solid.centre.z);
+        const float radius = 0.5f * glm::length(glm::vec2(solid.extents.x, solid.extents.z));
+        const float z = glm::dot(centre - root, n), x = glm::dot(centre - root, along);
+        if (z < -radius || z > farthest + radius) continue;
+        const float y0 = solid.centre.y - 0.5f * solid.extents.y, y1 = solid.centre.y + 0.5f * solid.extents.y;
+        if (!std::isfinite(body.over(y0, y1))) continue;  // the body has nothing at its heights
+        room.body = std::max(room.body, body.half_width + radius + kRoomMargin - std::fabs(x));
+      }
+    }
     if (std::fabs(cosine) < 0.2f) continue;  // all but parallel to the way across: not crossed on it
     const int lines = static_cast<int>(std::ceil(2.0f * body.half_width / kBodyLineSpacing)) + 1;
     const float spacing = lines > 1 ? 2.0f * body.half_width / static_cast<float>(lines - 1) : 0.0f;

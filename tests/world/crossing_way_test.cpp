@@ -9,6 +9,7 @@
 
 #include "engine/world/clearance.h"
 #include "engine/world/floor.h"
+#include "engine/world/key_player.h"
 #include "engine/world/world.h"
 #include "tests/world/builtin_assets.h"
 
@@ -148,4 +149,31 @@ TEST_CASE("an obstacle jumped, then walked back round, is jumped again on the wa
     CHECK(jumps == 2);
     CHECK(log.summary.object_frames == 0);
   }
+}
+
+TEST_CASE("a crawl is not launched with another obstacle's end post in its way on this side of the bar") {
+  // A beam running at about 100 degrees to a bar ends 1 m in front of it. Steered there with the keys (the
+  // key player, seed 2), the user crawled under the bar from a place the beam's end post stood beside, within
+  // the width the crawl's arms sweep: a forearm went 6 cm into the post. The room a launch place needs counted
+  // only solids beyond the crossing, and none of an obstacle running along the way across.
+  const char* text =
+      "{\"auto\": true, \"characters\": [{\"position\": [-0.61, 0], \"heading\": 23.19, \"control\": \"user\"}], "
+      "\"objects\": [{\"type\": \"beam\", \"action\": \"duck\", \"position\": [0.9313, 3.7022], \"heading\": -53.5707, "
+      "\"size\": [3.3553, 1.2, 0.1]}, {\"type\": \"bar\", \"action\": \"crawl\", \"position\": [1.3497, 5.9593], "
+      "\"heading\": 49.0026, \"size\": [4.4755, 0.7, 0.1]}, {\"type\": \"hurdle\", \"action\": \"jump\", \"position\": "
+      "[1.2624, 8.6215], \"heading\": -39.4098, \"size\": [2.8132, 0.45, 0.1]}], \"goal\": [-0.1949, 14.3454]}";
+  World world(parse_scenario(text, "post-beside-the-crawl"), test::builtin_assets());
+  ClearanceLog log(world);
+  KeyPlayer keys(2, {-0.1949f, 14.3454f});
+  const float dt = world.params().runtime.fixed_dt;
+  for (int t = 0; t < static_cast<int>(14.0f / dt); ++t) {
+    keys.before_tick(world, dt);
+    world.step();
+    log.observe(world);
+  }
+  bool crawled = false;
+  for (const LaunchRecord& l : world.launches()) crawled = crawled || l.action == TargetAction::Crawl;
+  CHECK(crawled);
+  CHECK(log.summary.object_frames == 0);
+  CHECK(log.summary.min_object >= -clearance_metric::kObjectTolerance);
 }
