@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "app/cli/command.h"
+#include "tests/cli/run_subcommand.h"
 #include "engine/util/error.h"
 #include "tests/support/paths.h"
 
@@ -17,22 +18,8 @@ using namespace prep;
 namespace {
 
 std::string run_evaluate(std::vector<std::string> args) {
-  CLI::App app{"test"};
-  for (auto& c : cli::commands())
-    if (c.name == "evaluate") c.define(*app.add_subcommand(c.name, c.help));
-  args.insert(args.begin(), "evaluate");
   args.insert(args.end(), {"--policy-cache", test::tmp_dir() + "/policy-cache"});
-  std::reverse(args.begin(), args.end());  // CLI11 takes a vector in reverse order
-  std::ostringstream captured;
-  auto* previous = std::cout.rdbuf(captured.rdbuf());
-  try {
-    app.parse(args);
-  } catch (...) {
-    std::cout.rdbuf(previous);
-    throw;
-  }
-  std::cout.rdbuf(previous);
-  return captured.str();
+  return test::run_subcommand("evaluate", std::move(args));
 }
 
 const std::string kKick = test::repo() + "/assets/scenarios/kick.json";

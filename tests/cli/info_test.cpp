@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "app/cli/command.h"
+#include "tests/cli/run_subcommand.h"
 #include "app/cli/info.h"
 #include "engine/motion/motion_set.h"
 #include "engine/util/error.h"
@@ -21,24 +22,7 @@ std::vector<Command>& commands() {
 using namespace prep;
 
 namespace {
-// Runs a registered subcommand as `prep NAME ARGS...` and returns what it printed.
-std::string run(const std::string& name, std::vector<std::string> args) {
-  CLI::App app{"test"};
-  for (auto& c : cli::commands())
-    if (c.name == name) c.define(*app.add_subcommand(c.name, c.help));
-  args.insert(args.begin(), name);
-  std::reverse(args.begin(), args.end());  // CLI11 takes a vector in reverse order
-  std::ostringstream captured;
-  auto* previous = std::cout.rdbuf(captured.rdbuf());
-  try {
-    app.parse(args);
-  } catch (...) {
-    std::cout.rdbuf(previous);
-    throw;
-  }
-  std::cout.rdbuf(previous);
-  return captured.str();
-}
+std::string run(const std::string& name, std::vector<std::string> args) { return test::run_subcommand(name, std::move(args)); }
 
 cli::RegisterInfoSection test_section({"test_section", 1000,
                                        [](const MotionSet& set, const Params&) { return nlohmann::json{{"clips", set.clips.size()}}; },

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "app/cli/command.h"
+#include "tests/cli/run_subcommand.h"
 #include "tests/support/paths.h"
 
 using namespace prep;
@@ -14,22 +15,8 @@ using namespace prep;
 namespace {
 
 std::string run_run(std::vector<std::string> args) {
-  CLI::App app{"test"};
-  for (auto& c : cli::commands())
-    if (c.name == "run") c.define(*app.add_subcommand(c.name, c.help));
-  args.insert(args.begin(), "run");
   args.insert(args.end(), {"--policy-cache", test::tmp_dir() + "/policy-cache"});
-  std::reverse(args.begin(), args.end());  // CLI11 takes a vector in reverse order
-  std::ostringstream captured;
-  auto* previous = std::cout.rdbuf(captured.rdbuf());
-  try {
-    app.parse(args);
-  } catch (...) {
-    std::cout.rdbuf(previous);
-    throw;
-  }
-  std::cout.rdbuf(previous);
-  return captured.str();
+  return test::run_subcommand("run", std::move(args));
 }
 
 const std::string kObstacles = test::repo() + "/assets/scenarios/obstacles.json";
