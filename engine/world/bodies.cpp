@@ -17,6 +17,7 @@
 namespace prep {
 
 using floor_plane::floor_xz;
+using floor_plane::crossing_direction;
 using floor_plane::forward_of;
 using floor_plane::is_across;
 
@@ -141,8 +142,7 @@ int World::body_on_crossing(int index, int obstacle) const {
   const WorldObject& o = objects_[static_cast<size_t>(obstacle)];
   const BodyReach& body = assets_->body_reaches[static_cast<size_t>(o.spec.action)];
   const glm::vec2 object = floor_xz(o.position);
-  glm::vec2 n = forward_of(o.spec.heading);
-  if (glm::dot(object - c.position, n) < 0.0f) n = -n;
+  const glm::vec2 n = crossing_direction(o.spec.heading, object, c.position);
   const glm::vec2 across(n.y, -n.x);
   const float to_line = glm::dot(object - c.position, n);
   // The clip's body sweeps body.half_width to either side of the character's line; a standing body reaches
@@ -169,8 +169,7 @@ void World::make_way(int standing, int crossing, int obstacle) {
   if (s.control != Control::Opponent || !s.defeated) return;  // the others have ways of their own
   const WorldCharacter& c = characters_[static_cast<size_t>(crossing)];
   const WorldObject& o = objects_[static_cast<size_t>(obstacle)];
-  glm::vec2 n = forward_of(o.spec.heading);
-  if (glm::dot(floor_xz(o.position) - c.position, n) < 0.0f) n = -n;
+  const glm::vec2 n = crossing_direction(o.spec.heading, floor_xz(o.position), c.position);
   const glm::vec2 across(n.y, -n.x);
   const float lateral = glm::dot(s.position - c.position, across);
   // Out of the swept width on the side it already leans to, by a stride more.

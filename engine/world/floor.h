@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
@@ -22,6 +23,12 @@ inline float wrap_angle(float a) {  // to (-pi, pi]
   a = std::fmod(a + kPi, 2.0f * kPi);
   if (a < 0.0f) a += 2.0f * kPi;
   return a - kPi;
+}
+// The way across an obstacle standing at `at`, turned `heading`, for one coming from `from`: its normal,
+// pointing from `from`'s side to the other.
+inline glm::vec2 crossing_direction(float heading, glm::vec2 at, glm::vec2 from) {
+  const glm::vec2 n = forward_of(heading);
+  return glm::dot(at - from, n) < 0.0f ? -n : n;
 }
 // Bars, beams and hurdles are crossed (along their normal); balls and opponents are met.
 inline bool is_across(ObjectType t) { return t == ObjectType::Bar || t == ObjectType::Beam || t == ObjectType::Hurdle; }

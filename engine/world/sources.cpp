@@ -15,6 +15,7 @@ namespace prep {
 namespace {
 
 using floor_plane::floor_xz;
+using floor_plane::crossing_direction;
 using floor_plane::forward_of;
 using floor_plane::is_across;
 using floor_plane::kPi;
@@ -72,8 +73,7 @@ glm::vec2 World::launch_point(int index, int obstacle) const {
   const WorldCharacter& c = characters_[static_cast<size_t>(index)];
   const WorldObject& o = objects_[static_cast<size_t>(obstacle)];
   const glm::vec2 object = floor_xz(o.position);
-  glm::vec2 n = forward_of(o.spec.heading);
-  if (glm::dot(object - c.position, n) < 0.0f) n = -n;  // the approach runs from the character's side
+  const glm::vec2 n = crossing_direction(o.spec.heading, object, c.position);  // the approach runs from the character's side
   // Already nearer to the obstacle than the clip's reach (out of the previous obstacle's clip), the
   // character is past its launch point: the point is where it stands, so that it goes on to the
   // obstacle (and enters the clip late) rather than turning back through what it has just crossed.

@@ -22,6 +22,7 @@ namespace prep {
 namespace {
 
 using floor_plane::floor_xz;
+using floor_plane::crossing_direction;
 using floor_plane::forward_of;
 using floor_plane::is_across;
 using floor_plane::kPi;
@@ -376,8 +377,7 @@ bool World::start_target(int index, TargetAction action, int object, int target_
       // covers, or beside the part of the span a launch starts from, the difference is slid in before the
       // body reaches the obstacle (a longer or shorter stride, a drift to the side).
       const glm::vec2 p = floor_xz(o.position);
-      glm::vec2 n = forward_of(o.spec.heading);
-      if (glm::dot(p - c.position, n) < 0.0f) n = -n;
+      const glm::vec2 n = crossing_direction(o.spec.heading, p, c.position);
       const glm::vec2 side = floor_plane::left_of(o.spec.heading);
       const size_t k = static_cast<size_t>(entry - t.reference_frame);
       const float clip_distance = t.reach - (k < t.advance.size() ? t.advance[k] : 0.0f);
