@@ -103,29 +103,25 @@ float World::launch_lateral(int index, int obstacle) const {
   if (rt.room_obstacle != obstacle || rt.room_from_front != from_front) {
     rt.room_obstacle = obstacle;
     rt.room_from_front = from_front;
-    rt.room_short.resize(static_cast<size_t>(samples));
-    rt.follow_short.resize(static_cast<size_t>(samples));
-    for (int k = 0; k < samples; ++k) {
-      const RoomShort r = launch_room_short(obstacle, o.spec.action, n, at(k));
-      rt.room_short[static_cast<size_t>(k)] = r.body;
-      rt.follow_short[static_cast<size_t>(k)] = r.follow;
-    }
+    rt.room.resize(static_cast<size_t>(samples));
+    for (int k = 0; k < samples; ++k) rt.room[static_cast<size_t>(k)] = launch_room_short(obstacle, o.spec.action, n, at(k));
   }
+  // How far along the crossing from the T_p root the character stands (the same at every place).
+  const float standing = glm::dot(c.position - object, n) + assets_->target(o.spec.action).reach;
+  const auto body_short = [&](int k) { return rt.room[static_cast<size_t>(k)].body_from(standing); };
   const int nearest = std::clamp(static_cast<int>(std::lround((own + span) / kLateralStep)), 0, samples - 1);
-  const auto room_for_both = [&](int k) {
-    return rt.room_short[static_cast<size_t>(k)] <= 0.0f && rt.follow_short[static_cast<size_t>(k)] <= 0.0f;
-  };
+  const auto room_for_both = [&](int k) { return body_short(k) <= 0.0f && rt.room[static_cast<size_t>(k)].follow <= 0.0f; };
   rt.room_moved = false;
   if (room_for_both(nearest)) return own;
   int best = -1;
   for (int k = 0; k < samples; ++k)
     if (room_for_both(k) && (best < 0 || std::fabs(at(k) - own) < std::fabs(at(best) - own))) best = k;
   if (best < 0) {
-    if (rt.room_short[static_cast<size_t>(nearest)] <= 0.0f) return own;
+    if (body_short(nearest) <= 0.0f) return own;
     best = nearest;
     for (int k = 0; k < samples; ++k) {
-      const float shortfall = std::max(rt.room_short[static_cast<size_t>(k)], 0.0f);
-      const float best_shortfall = std::max(rt.room_short[static_cast<size_t>(best)], 0.0f);
+      const float shortfall = std::max(body_short(k), 0.0f);
+      const float best_shortfall = std::max(body_short(best), 0.0f);
       if (shortfall < best_shortfall || (shortfall == best_shortfall && std::fabs(at(k) - own) < std::fabs(at(best) - own))) best = k;
     }
   }
@@ -134,14 +130,16 @@ float World::launch_lateral(int index, int obstacle) const {
 }
 
 // How much room (m) the clip of `action`, launched at the obstacle along `n` at `lateral` from its middle,
-// lacks before the solids of the other unused across obstacles beyond: its body (BodyReach, up to the frame
-// the clip may be left, as wide as it reaches either side of its line) comes within kRoomMargin of one by
-// this much (RoomShort::body). <= 0: it has room. The body's width is followed along parallel lines
+// lacks before the solids of the other across obstacles beyond: its body (BodyReach, up to the frame the
+// clip may be left, as wide as it reaches either side of its line) comes within kRoomMargin of one by this
+// much (RoomShort::body). <= 0: it has room. The body's width is followed along parallel lines
 // kBodyLineSpacing apart; each solid is widened by half that, so that a narrow one (a hurdle's foot) cannot
-// fall between two lines. RoomShort::follow: how much farther than its late entry covers the next
-// obstacle's clip would be slid back, started at this clip's release frame.
+// fall between two lines. RoomShort::between: the same for a rail or board between the T_p root and the
+// obstacle. RoomShort::follow: how much farther than its late entry covers the next obstacle's clip would
+// be slid back, started at this clip's release frame.
 World::RoomShort World::launch_room_short(int obstacle, TargetAction action, glm::vec2 n, float lateral) const {
-  RoomShort room{-std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity()};
+  RoomShort room{-std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity(),
+                 -std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity()};
   const BodyReach& body = assets_->body_reaches[static_cast<size_t>(action)];
   if (body.z.empty()) return room;
   const WorldObject& o = objects_[static_cast<size_t>(obstacle)];
@@ -207,9 +205,22 @@ World::RoomShort World::launch_room_short(int obstacle, TargetAction action, glm
         // The solid's depth (along n2) as a stretch of z, and the body's farthest z at the solid's heights.
         const float z0 = z_at_axis + (solid.centre.z - 0.5f * solid.extents.z) / cosine;
         const float z1 = z_at_axis + (solid.centre.z + 0.5f * solid.extents.z) / cosine;
-        const float near = std::min(z0, z1);
-        if (near <= reach) continue;  // on this side of the obstacle crossed: not what the clip runs into
+        const float near = std::min(z0, z1), far = std::max(z0, z1);
         const float y0 = solid.centre.y - 0.5f * solid.extents.y, y1 = solid.centre.y + 0.5f * solid.extents.y;
+        if (near <= reach) {
+          // On this side of the obstacle crossed: out of the way behind the T_p root; between the root and
+          // the obstacle (`next` runs across this one's way, the two meeting within the clip's width) a rail
+          // or board is passed on the way in wherever the body reaches it at its heights. Upright parts are
+          // the block's above.
+          if (far > 0.0f && (solid.part == SolidPart::Rail || solid.part == SolidPart::Board)) {
+            const float short_by = body.over(y0, y1) + kRoomMargin - std::max(near, 0.0f);
+            if (short_by > 0.0f) {
+              room.between = std::max(room.between, short_by);
+              room.between_from = std::max(room.between_from, near);
+            }
+          }
+          continue;
+        }
         room.body = std::max(room.body, body.over(y0, y1) + kRoomMargin - near);
       }
     }

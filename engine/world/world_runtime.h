@@ -82,8 +82,7 @@ struct World::Runtime {
   // the source and the side it is approached from stay the same.
   int room_obstacle = -1;
   bool room_from_front = false;
-  std::vector<float> room_short;  // m of room each place lacks for the clip's body (<= 0: enough)
-  std::vector<float> follow_short;  // ... for the next obstacle's clip to follow on (World::RoomShort)
+  std::vector<RoomShort> room;     // the room each place lacks (World::RoomShort)
   bool room_moved = false;        // the launch place is not the character's own for want of room
   std::vector<PlacedCapsule> capsules;  // the body this frame (World::keep_clear_of_obstacles)
 };

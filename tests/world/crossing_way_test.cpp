@@ -177,3 +177,36 @@ TEST_CASE("a crawl is not launched with another obstacle's end post in its way o
   CHECK(log.summary.object_frames == 0);
   CHECK(log.summary.min_object >= -clearance_metric::kObjectTolerance);
 }
+
+TEST_CASE("a jump is not launched through the rail of a bar that crosses its way between the user and the hurdle") {
+  // The bar of the course above runs across the hurdle, the two meeting 1.7 m right of the hurdle's middle.
+  // A user standing between them near that corner, its goal back over the hurdle, has the bar's rail
+  // between it and the hurdle. That rail was counted only beyond the hurdle: the jump was launched there,
+  // the arms went through the rail and the body stayed caught against the board (190 to 545 frames, 4 to
+  // 8 cm deep, the goal never reached).
+  struct Start {
+    glm::vec2 position;
+    float heading;
+    glm::vec2 goal;
+  };
+  for (const Start& s : {Start{{1.05f, 5.6f}, 180.0f, {1.2f, 3.0f}}, Start{{0.9f, 5.7f}, 190.0f, {1.0f, 3.0f}},
+                         Start{{1.2f, 5.5f}, 170.0f, {1.3f, 3.0f}}, Start{{0.6f, 5.8f}, 180.0f, {0.8f, 3.0f}}}) {
+    char text[900];
+    std::snprintf(text, sizeof text,
+                  "{\"auto\": true, \"characters\": [{\"position\": [%.2f, %.2f], \"heading\": %.0f, \"control\": \"user\"}], "
+                  "\"objects\": [{\"type\": \"hurdle\", \"action\": \"jump\", \"position\": [0.0, 5.0], \"heading\": 6.14, "
+                  "\"size\": [5.0, 0.45, 0.1]}, {\"type\": \"bar\", \"action\": \"crawl\", \"position\": [-0.29, 6.18], "
+                  "\"heading\": 33.9, \"size\": [5.0, 0.7, 0.1]}], \"goal\": [%.2f, %.2f]}",
+                  s.position.x, s.position.y, s.heading, s.goal.x, s.goal.y);
+    CAPTURE(text);
+    World world(parse_scenario(text, "corner"), test::builtin_assets());
+    ClearanceLog log(world);
+    world.run_until_done(60.0f, 1.0f, [&](const World& w) { log.observe(w); });
+    CHECK(world.goal_reached());
+    bool jumped = false;
+    for (const LaunchRecord& l : world.launches()) jumped = jumped || l.action == TargetAction::Jump;
+    CHECK(jumped);
+    CHECK(log.summary.object_frames == 0);
+    CHECK(log.summary.min_object >= -clearance_metric::kObjectTolerance);
+  }
+}
