@@ -106,9 +106,12 @@ float World::launch_lateral(int index, int obstacle) const {
     rt.room.resize(static_cast<size_t>(samples));
     for (int k = 0; k < samples; ++k) rt.room[static_cast<size_t>(k)] = launch_room_short(obstacle, o.spec.action, n, at(k));
   }
-  // How far along the crossing from the T_p root the character stands (the same at every place).
-  const float standing = glm::dot(c.position - object, n) + assets_->target(o.spec.action).reach;
-  const auto body_short = [&](int k) { return rt.room[static_cast<size_t>(k)].body_from(standing); };
+  // How far along the crossing from the T_p root the front of the character's body reaches (the same at
+  // every place). A rail between the root and the obstacle that the body has reached is not moved away from:
+  // the walk along the span to a place with room would carry the body along under or beside it (a duck left
+  // under a beam for a hurdle beyond walked on upright, its head in the rail).
+  const float body_front = glm::dot(c.position - object, n) + assets_->target(o.spec.action).reach + kStandingRadius;
+  const auto body_short = [&](int k) { return rt.room[static_cast<size_t>(k)].body_from(body_front); };
   const int nearest = std::clamp(static_cast<int>(std::lround((own + span) / kLateralStep)), 0, samples - 1);
   const auto room_for_both = [&](int k) { return body_short(k) <= 0.0f && rt.room[static_cast<size_t>(k)].follow <= 0.0f; };
   rt.room_moved = false;

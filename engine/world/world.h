@@ -502,11 +502,11 @@ class World {
   // own body before the next obstacle, `follow` for the next obstacle's clip to follow on out of it without
   // being slid back. `between`: what it lacks for another obstacle's rail or board lying between the T_p
   // root and the obstacle, the farthest of them starting `between_from` along the crossing from the T_p root;
-  // it counts only for a character not yet that far (one past it enters the clip late, beyond it).
+  // it counts only while the character's body has not come that far (one past it enters the clip late).
   struct RoomShort {
     float body = 0.0f, follow = 0.0f;
     float between = 0.0f, between_from = 0.0f;
-    float body_from(float standing) const { return standing < between_from ? std::max(body, between) : body; }
+    float body_from(float body_front) const { return body_front < between_from ? std::max(body, between) : body; }
   };
   RoomShort launch_room_short(int obstacle, TargetAction action, glm::vec2 n, float lateral) const;
   // The approach to the character's source (set by choose_source): the distance still to go to its launch
