@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <string>
 
@@ -151,6 +152,22 @@ TEST_CASE("an obstacle jumped, then walked back round, is jumped again on the wa
   }
 }
 
+namespace {
+
+// Steps the world for `seconds` with the user steered by the key player seeded `seed`, its goal `goal`,
+// logging the clearance of every frame.
+void steer_with_keys(World& world, ClearanceLog& log, std::uint64_t seed, glm::vec2 goal, float seconds) {
+  KeyPlayer keys(seed, goal);
+  const float dt = world.params().runtime.fixed_dt;
+  for (int t = 0; t < static_cast<int>(seconds / dt); ++t) {
+    keys.before_tick(world, dt);
+    world.step();
+    log.observe(world);
+  }
+}
+
+}  // namespace
+
 TEST_CASE("a crawl is not launched with another obstacle's end post in its way on this side of the bar") {
   // A beam running at about 100 degrees to a bar ends 1 m in front of it. Steered there with the keys (the
   // key player, seed 2), the user crawled under the bar from a place the beam's end post stood beside, within
@@ -164,13 +181,7 @@ TEST_CASE("a crawl is not launched with another obstacle's end post in its way o
       "[1.2624, 8.6215], \"heading\": -39.4098, \"size\": [2.8132, 0.45, 0.1]}], \"goal\": [-0.1949, 14.3454]}";
   World world(parse_scenario(text, "post-beside-the-crawl"), test::builtin_assets());
   ClearanceLog log(world);
-  KeyPlayer keys(2, {-0.1949f, 14.3454f});
-  const float dt = world.params().runtime.fixed_dt;
-  for (int t = 0; t < static_cast<int>(14.0f / dt); ++t) {
-    keys.before_tick(world, dt);
-    world.step();
-    log.observe(world);
-  }
+  steer_with_keys(world, log, 2, {-0.1949f, 14.3454f}, 14.0f);
   bool crawled = false;
   for (const LaunchRecord& l : world.launches()) crawled = crawled || l.action == TargetAction::Crawl;
   CHECK(crawled);
@@ -228,13 +239,7 @@ TEST_CASE("a duck left under a beam for a hurdle beyond is not walked along the 
       "\"heading\": -3.88, \"size\": [5.0, 0.4, 0.1]}], \"goal\": [-0.303, 11.7353]}";
   World world(parse_scenario(text, "duck-left-under-a-beam"), assets);
   ClearanceLog log(world);
-  KeyPlayer keys(2, {-0.303f, 11.7353f});
-  const float dt = world.params().runtime.fixed_dt;
-  for (int t = 0; t < static_cast<int>(25.0f / dt); ++t) {
-    keys.before_tick(world, dt);
-    world.step();
-    log.observe(world);
-  }
+  steer_with_keys(world, log, 2, {-0.303f, 11.7353f}, 25.0f);
   int ducks = 0;
   for (const LaunchRecord& l : world.launches()) ducks += l.action == TargetAction::Duck;
   CHECK(ducks >= 3);  // the third, entered late, is the one left under the rail
