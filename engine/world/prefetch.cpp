@@ -24,6 +24,7 @@ void World::prefetch(int level) const {
       for (const WorldCharacter& c : characters_) {
         prefetch_vector(c.pose.rotations);
         prefetch_vector(c.support.hull);
+        prefetch_vector(c.goal);  // choose_source reads the next waypoint first thing
       }
       for (const auto& rt : runtime_) prefetch_object(*rt);
       break;
