@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <limits>
 #include <stdexcept>
+#include <utility>
 
 #include "engine/control/action_effects.h"
 #include "engine/control/arrival.h"
@@ -667,9 +668,10 @@ void World::step_character(int index) {
   // poses whose feet differ), no toe goes into the floor.
   synthesizer_->stage_floor(rt.scratch, out, kinematics_given);
   if (!c.in_target && rt.fade_left <= 0.0f) c.arm_out_at = -1;
-  c.pose = out;
+  // `out` is made afresh each tick before anything reads it: the two poses trade buffers, nothing is copied.
+  std::swap(c.pose, out);
   const glm::vec2 previous_position = c.position;
-  c.position = floor_xz(out.root_position);
+  c.position = floor_xz(c.pose.root_position);
   rt.speed += dt / (dt + 0.5f) * (glm::length(c.position - previous_position) / dt - rt.speed);
   rt.velocity = (c.position - previous_position) / dt;
   c.heading = heading_of(rt.stream.pose().rotations[0]);
