@@ -18,6 +18,13 @@ using namespace prep;
 
 namespace {
 
+// How many times the world launched `action`.
+int launches_of(const World& world, TargetAction action) {
+  int n = 0;
+  for (const LaunchRecord& l : world.launches()) n += l.action == action;
+  return n;
+}
+
 // A hurdle and, 1.2 m beyond it and turned 28 degrees to it, a bar; the user crosses both to a waypoint
 // beyond and comes back over them to a goal behind its start.
 std::string there_and_back(float back_x, float back_z) {
@@ -44,13 +51,8 @@ TEST_CASE("crossing back over two close obstacles, the crawl keeps room from the
     ClearanceLog log(world);
     world.run_until_done(90.0f, 1.0f, [&](const World& w) { log.observe(w); });
     CHECK(world.goal_reached());
-    int crawls = 0, jumps = 0;
-    for (const LaunchRecord& l : world.launches()) {
-      crawls += l.action == TargetAction::Crawl;
-      jumps += l.action == TargetAction::Jump;
-    }
-    CHECK(crawls == 2);  // both crossed both ways
-    CHECK(jumps == 2);
+    CHECK(launches_of(world, TargetAction::Crawl) == 2);  // both crossed both ways
+    CHECK(launches_of(world, TargetAction::Jump) == 2);
     CHECK(log.summary.object_frames == 0);
     CHECK(log.summary.min_object >= -clearance_metric::kObjectTolerance);
   }
@@ -145,9 +147,7 @@ TEST_CASE("an obstacle jumped, then walked back round, is jumped again on the wa
     ClearanceLog log(world);
     world.run_until_done(60.0f, 1.0f, [&](const World& w) { log.observe(w); });
     CHECK(world.goal_reached());
-    int jumps = 0;
-    for (const LaunchRecord& l : world.launches()) jumps += l.action == TargetAction::Jump;
-    CHECK(jumps == 2);
+    CHECK(launches_of(world, TargetAction::Jump) == 2);
     CHECK(log.summary.object_frames == 0);
   }
 }
@@ -182,9 +182,7 @@ TEST_CASE("a crawl is not launched with another obstacle's end post in its way o
   World world(parse_scenario(text, "post-beside-the-crawl"), test::builtin_assets());
   ClearanceLog log(world);
   steer_with_keys(world, log, 2, {-0.1949f, 14.3454f}, 14.0f);
-  bool crawled = false;
-  for (const LaunchRecord& l : world.launches()) crawled = crawled || l.action == TargetAction::Crawl;
-  CHECK(crawled);
+  CHECK(launches_of(world, TargetAction::Crawl) > 0);
   CHECK(log.summary.object_frames == 0);
   CHECK(log.summary.min_object >= -clearance_metric::kObjectTolerance);
 }
@@ -214,9 +212,7 @@ TEST_CASE("a jump is not launched through the rail of a bar that crosses its way
     ClearanceLog log(world);
     world.run_until_done(60.0f, 1.0f, [&](const World& w) { log.observe(w); });
     CHECK(world.goal_reached());
-    bool jumped = false;
-    for (const LaunchRecord& l : world.launches()) jumped = jumped || l.action == TargetAction::Jump;
-    CHECK(jumped);
+    CHECK(launches_of(world, TargetAction::Jump) > 0);
     CHECK(log.summary.object_frames == 0);
     CHECK(log.summary.min_object >= -clearance_metric::kObjectTolerance);
   }
@@ -240,9 +236,7 @@ TEST_CASE("a duck left under a beam for a hurdle beyond is not walked along the 
   World world(parse_scenario(text, "duck-left-under-a-beam"), assets);
   ClearanceLog log(world);
   steer_with_keys(world, log, 2, {-0.303f, 11.7353f}, 25.0f);
-  int ducks = 0;
-  for (const LaunchRecord& l : world.launches()) ducks += l.action == TargetAction::Duck;
-  CHECK(ducks >= 3);  // the third, entered late, is the one left under the rail
+  CHECK(launches_of(world, TargetAction::Duck) >= 3);  // the third, entered late, is the one left under the rail
   CHECK(log.summary.object_frames == 0);
   CHECK(log.summary.min_object >= -clearance_metric::kObjectTolerance);
 }
