@@ -109,8 +109,14 @@ void run(const Options& o) {
                         {"limit_ms", prep::kPauseMs},
                         {"pauses", p.paused.pauses},
                         {"longest_ms", p.paused.longest_ms},
-                        {"paused_ms", p.paused.paused_ms}};
-    say(std::to_string(p.paused.pauses) + " pauses, the longest " + std::to_string(p.paused.longest_ms) + " ms\n");
+                        {"paused_ms", p.paused.paused_ms},
+                        {"stop_limit_ms", prep::kProbeStopMs},
+                        {"stops", p.stopped.pauses},
+                        {"stopped_ms", p.stopped.paused_ms}};
+    char line[160];
+    std::snprintf(line, sizeof line, "%d pauses over %.0f ms, %d stops over %.0f ms, the longest %.1f ms\n", p.paused.pauses,
+                  prep::kPauseMs, p.stopped.pauses, prep::kProbeStopMs, p.paused.longest_ms);
+    say(line);
   }
 
   const prep::Scenario scenario = prep::load_scenario(repo_path(o.scenario));
@@ -183,6 +189,8 @@ void run(const Options& o) {
     std::printf("| the machine alone: pauses of a busy thread over %.0f ms (%d threads, %.0f s, pieces of %.0f us) | %d, the longest %.1f ms |\n",
                 p["limit_ms"].get<double>(), p["threads"].get<int>(), p["seconds"].get<double>(),
                 p["median_piece_us"].get<double>(), p["pauses"].get<int>(), p["longest_ms"].get<double>());
+    std::printf("| the machine alone: stops of a busy thread over %.0f ms, pauses included | %d, %.1f ms in all |\n",
+                p["stop_limit_ms"].get<double>(), p["stops"].get<int>(), p["stopped_ms"].get<double>());
   }
   for (const auto& [name, ms] : j["graph_build_ms"].items())
     std::printf("| motion graph build, %s | %.1f ms |\n", name.c_str(), ms.get<double>());

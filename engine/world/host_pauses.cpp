@@ -68,6 +68,7 @@ HostPauseProbe probe_host_pauses(double seconds, int threads, const std::functio
   for (const auto& times : piece_ms) all.insert(all.end(), times.begin(), times.end());
   probe.pieces = static_cast<std::int64_t>(all.size());
   probe.paused = count_pauses(all);
+  probe.stopped = count_pauses(all, kProbeStopMs);
   if (!all.empty()) {
     std::nth_element(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(all.size() / 2), all.end());
     probe.median_piece_us = 1e3 * all[all.size() / 2];

@@ -112,4 +112,20 @@ TEST_CASE("a piece of work over the pause limit counts as a pause, and the probe
   CHECK(p.paused.pauses >= 1);
   CHECK(p.paused.longest_ms >= stop_ms);
   CHECK(p.paused.paused_ms >= stop_ms);
+  CHECK(p.stopped.pauses >= p.paused.pauses);  // every pause is a stop too
+  CHECK(p.stopped.paused_ms >= p.paused.paused_ms);
+}
+
+TEST_CASE("the probe counts a stop of a few milliseconds, too short to be a pause") {
+  // A thread put to sleep inside one piece for three milliseconds: over the probe's stop limit, while a
+  // piece takes microseconds and a pause takes over twenty milliseconds.
+  const double stop_ms = 3.0 * kProbeStopMs;
+  static_assert(3.0 * kProbeStopMs < kPauseMs, "the stop is shorter than a pause");
+  const HostPauseProbe p = probe_host_pauses(0.2, 2, [&](int thread, std::int64_t piece) {
+    if (thread == 0 && piece == 7) std::this_thread::sleep_for(std::chrono::duration<double, std::milli>(stop_ms));
+  });
+  CHECK(p.median_piece_us < 1e3 * kProbeStopMs);
+  CHECK(p.stopped.pauses >= 1);
+  CHECK(p.stopped.longest_ms >= stop_ms);
+  CHECK(p.stopped.paused_ms >= stop_ms);
 }
