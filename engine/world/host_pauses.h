@@ -7,8 +7,9 @@
 // takes a millisecond and once takes a hundred did not do a hundred times as much.
 //
 // - probe_host_pauses: a fixed piece of arithmetic (one number, no calls, no branch on data), some 15-20 us,
-//   repeated on every thread and timed; a piece that takes over kPauseMs was paused. It measures the
-//   machine alone, before a benchmark, so that a benchmark's slowest frames can be read against it.
+//   repeated on every thread and timed; a piece that takes over kPauseMs was paused, and one over
+//   kProbeStopMs was stopped for a shorter while. It measures the machine alone, before a benchmark, so
+//   that a benchmark's slowest frames can be read against it.
 // - count_pauses: the same rule over a benchmark's own timed pieces (a crowd frame's runs of worlds).
 #pragma once
 
