@@ -78,10 +78,31 @@ void Controller::set_arrived(bool arrived) {
 }
 
 ControlDecision Controller::decide(const ControlInput& in) {
+  // Greedy over the actions Next(last motion) allows and the caller has not ruled out.
+  const std::uint64_t next = actions_.allowed_mask(motion_);
+  return choose(in, (next & ~in.ruled_out) != 0 ? next & ~in.ruled_out : next);
+}
+
+ControlDecision Controller::decide_level(const ControlInput& in) {
+  // The levels of the motion playing that Next(m) allows (a core motion may follow itself: its loop).
+  const int levels = actions_.alpha_levels();
+  const std::uint64_t of_motion = (levels >= 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << levels) - 1) << (motion_ * levels);
+  const int playing = alpha_level_;
+  ControlDecision d = choose(in, actions_.allowed_mask(motion_) & of_motion);
+  if (d.state >= 0 && d.alpha_level < playing) {
+    // A nearer source calls for no less preparation than the level playing.
+    d.alpha_level = alpha_level_ = playing;
+    d.alpha = alpha_of_level(playing);
+    d.action = actions_.index({motion_, playing});
+  }
+  return d;
+}
+
+ControlDecision Controller::choose(const ControlInput& in, std::uint64_t candidates) {
   const Situation s = make_situation(in.position, in.heading, in.goal, in.source, alpha_level_, motion_);
   ControlDecision d;
   d.at_goal = s.d_g < goal_radius_;
-  if (d.at_goal) {
+  if (d.at_goal || candidates == 0) {
     // Training ends an episode on entering the goal radius, so the policy never learned anything inside
     // it (its Q values there are untouched): the character carries on with the action it plays (for a
     // goal that is also the launch point, until the arrival stops it there, arrival.h).
@@ -103,14 +124,11 @@ ControlDecision Controller::decide(const ControlInput& in) {
   b.d_i = states_.d_i_bin(s.d_i);
   b.theta_i = states_.theta_i_bin(s.theta_i);
   d.state = states_.index(b);
-  // Greedy over the actions Next(last motion) allows and the caller has not ruled out (lowest index on ties,
-  // as in training).
-  const std::uint64_t next = actions_.allowed_mask(motion_);
-  const std::uint64_t allowed = (next & ~in.ruled_out) != 0 ? next & ~in.ruled_out : next;
+  // Greedy over the candidates (lowest index on ties, as in training).
   const float* row = policy_->row(d.state);
   int best = -1;
   for (int a = 0; a < actions_.size(); ++a)
-    if ((allowed >> a & 1u) && (best < 0 || row[a] > row[best])) best = a;
+    if ((candidates >> a & 1u) && (best < 0 || row[a] > row[best])) best = a;
   d.action = best;
   const Action a = actions_.decode(best);
   d.motion = a.motion;

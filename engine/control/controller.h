@@ -82,6 +82,12 @@ class Controller {
 
   // The greedy action in the current situation; updates the state's alpha (Eq. 13) and last motion.
   ControlDecision decide(const ControlInput& in);
+  // The greedy level for the motion playing, the motion kept (its gait cycle plays on): the level chosen
+  // again in the situation the character is now in (RuntimeParams::level_per_source_bin), unless it is
+  // below the level playing, which then stays.
+  ControlDecision decide_level(const ControlInput& in);
+  // The distance bin (the state's d_i) of a source this far away.
+  int source_bin(float distance) const { return states_.d_i_bin(distance); }
   // One engine tick (RuntimeParams::fixed_dt): the filtered alpha for synthesis (1 is played once arrived).
   // Relaxed (no source calls for preparation, RuntimeParams::relax_without_source), 0 is played whatever
   // the level: the policy and its state are the paper's, only what synthesis plays relaxes. Beyond the
@@ -108,6 +114,9 @@ class Controller {
   const std::string& motion_name(int motion) const { return policy_->table.motion_names[static_cast<size_t>(motion)]; }
 
  private:
+  // The greedy action among `candidates` (a mask of actions), as decide() takes it.
+  ControlDecision choose(const ControlInput& in, std::uint64_t candidates);
+
   std::shared_ptr<const Policy> policy_;
   StateSpace states_;
   ActionSpace actions_;

@@ -66,6 +66,7 @@ template <class F> void fields(RuntimeParams& p, F&& f) {
   f("kept_alpha", p.kept_alpha); f("tight_turn_deg_per_s", p.tight_turn_deg_per_s);
   f("waypoint_pass_radius", p.waypoint_pass_radius); f("anticipate_closing", p.anticipate_closing);
   f("end_turn_at_goal_bearing", p.end_turn_at_goal_bearing); f("keep_source_ahead", p.keep_source_ahead);
+  f("level_per_source_bin", p.level_per_source_bin);
   f("make_for_ball_source", p.make_for_ball_source);
   f("keep_clear", p.keep_clear);
 }

@@ -212,6 +212,37 @@ void World::step() {
   stage_times_.total_ms = ms_between(step_start, stage_now());
 }
 
+// The source as the controller sees it. No source: one far behind, beyond the last distance bin, never to
+// be reached (world.h). A source that closes in (an opponent walking up) is shown where a still one would
+// leave the same time to prepare: nearer by the share of the closing that is its own (training's sources
+// stand still, so the policy reads distance as time at the character's own pace).
+glm::vec2 World::control_source(int index) const {
+  const WorldCharacter& c = characters_[static_cast<size_t>(index)];
+  const Runtime& rt = *runtime_[static_cast<size_t>(index)];
+  if (!c.has_source) return c.position - 100.0f * forward_of(c.heading);
+  if (!params_.runtime.anticipate_closing || !(rt.source_closing_speed > 0.0f)) return c.source;
+  const float own = std::max(rt.speed, kMinApproachSpeed);
+  return c.position + (c.source - c.position) * (own / (own + rt.source_closing_speed));
+}
+
+// What the controller sees: the character, its goal and its source (control_source), and the turns the
+// run-time rules rule out (keep_source_ahead).
+ControlInput World::control_input(int index) const {
+  const WorldCharacter& c = characters_[static_cast<size_t>(index)];
+  const Runtime& rt = *runtime_[static_cast<size_t>(index)];
+  ControlInput in;
+  in.position = c.position;
+  in.heading = c.heading;
+  in.goal = steering_goal(c).value_or(c.position);
+  in.source = control_source(index);
+  // A source ahead is not turned away from (RuntimeParams::keep_source_ahead): a turn is ruled out when it
+  // would leave both the source and the goal further off the facing (a goal steered elsewhere is turned to).
+  if (params_.runtime.keep_source_ahead && c.has_source && c.source_ahead)
+    in.ruled_out = turns_off(rt.controller->policy().table, bearing_to(c.position, c.heading, in.source)) &
+                   turns_off(rt.controller->policy().table, bearing_to(c.position, c.heading, in.goal));
+  return in;
+}
+
 // The controller: a decision per action (its duration in the action table; none while arriving), and the
 // motion stream kept one motion ahead.
 void World::control(int index) {
@@ -234,25 +265,22 @@ void World::control(int index) {
       rt.turning_toward_goal = 0;
     }
   }
-  if (decisions_held_ == 0 && time_ >= rt.next_decision && !ctl.arrived()) {
-    ControlInput in;
-    in.position = c.position;
-    in.heading = c.heading;
-    in.goal = steering_goal(c).value_or(c.position);
-    // No source: one far behind, beyond the last distance bin, never to be reached (world.h).
-    in.source = c.has_source ? c.source : c.position - 100.0f * forward_of(c.heading);
-    // A source that closes in (an opponent walking up) is shown where a still one would leave the same
-    // time to prepare: nearer by the share of the closing that is its own (training's sources stand still,
-    // so the policy reads distance as time at the character's own pace).
-    if (params_.runtime.anticipate_closing && c.has_source && rt.source_closing_speed > 0.0f) {
-      const float own = std::max(rt.speed, kMinApproachSpeed);
-      in.source = c.position + (in.source - c.position) * (own / (own + rt.source_closing_speed));
+  const bool due = decisions_held_ == 0 && time_ >= rt.next_decision && !ctl.arrived();
+  if (!due && decisions_held_ == 0 && !ctl.arrived() && c.has_source && params_.runtime.level_per_source_bin &&
+      c.source_object == rt.decided_source_object && c.source_character == rt.decided_source_character) {
+    // The source has come a distance bin nearer since the level was chosen: choose it again for the
+    // motion playing (RuntimeParams::level_per_source_bin).
+    const int bin = ctl.source_bin(glm::length(control_source(index) - c.position));
+    if (bin < rt.decided_source_bin) {
+      c.chosen_alpha = ctl.decide_level(control_input(index)).alpha;
+      rt.decided_source_bin = bin;
     }
-    // A source ahead is not turned away from (RuntimeParams::keep_source_ahead): a turn is ruled out when it
-    // would leave both the source and the goal further off the facing (a goal steered elsewhere is turned to).
-    if (params_.runtime.keep_source_ahead && c.has_source && c.source_ahead)
-      in.ruled_out = turns_off(ctl.policy().table, bearing_to(c.position, c.heading, in.source)) &
-                     turns_off(ctl.policy().table, bearing_to(c.position, c.heading, in.goal));
+  }
+  if (due) {
+    const ControlInput in = control_input(index);
+    rt.decided_source_bin = c.has_source ? ctl.source_bin(glm::length(in.source - c.position)) : Runtime::kNoSourceBin;
+    rt.decided_source_object = c.source_object;
+    rt.decided_source_character = c.source_character;
     const ControlDecision d = ctl.decide(in);
     c.motion = d.motion;
     c.chosen_alpha = d.alpha;

@@ -448,6 +448,8 @@ class World {
   void step_character(int index);
   void choose_source(int index);
   void control(int index);
+  glm::vec2 control_source(int index) const;
+  ControlInput control_input(int index) const;
   bool start_target(int index, TargetAction action, int object, int target_character, bool automatic);
   void try_auto_launch(int index);
   void update_goal(int index);

@@ -189,3 +189,39 @@ TEST_CASE("actions the caller rules out are passed over for the best of the rest
   in.ruled_out = ~std::uint64_t{0};
   CHECK(c.decide(in).action == first);
 }
+
+TEST_CASE("a level chosen again keeps the motion playing: the best level of that motion, whatever is ruled out") {
+  const Params params;
+  const auto world = test::hand_made_world(params);
+  const StateSpace states(params.quantization, world.table.motions);
+  const ActionSpace actions(states.motions(), states.alpha_levels());
+  // Every state ranks (motion 1, level 2) first, (motion 0, level 3) second, (motion 0, level 1) third.
+  std::vector<float> q(static_cast<size_t>(states.size()) * static_cast<size_t>(actions.size()), 0.0f);
+  const int first = actions.index({1, 2}), second = actions.index({0, 3}), third = actions.index({0, 1});
+  for (int s = 0; s < states.size(); ++s) {
+    q[static_cast<size_t>(s) * actions.size() + static_cast<size_t>(first)] = 3.0f;
+    q[static_cast<size_t>(s) * actions.size() + static_cast<size_t>(second)] = 2.0f;
+    q[static_cast<size_t>(s) * actions.size() + static_cast<size_t>(third)] = 1.0f;
+  }
+  Controller c(test::hand_made_policy(params, world, q), params);
+  ControlInput in;
+  in.goal = {0.0f, 5.0f};
+  in.source = {0.0f, 3.0f};
+  c.reset(0, 0);
+  ControlDecision d = c.decide_level(in);
+  CHECK(d.motion == 0);  // motion 1's action ranks first, but motion 0 plays
+  CHECK(d.action == second);
+  CHECK(d.alpha_level == 3);
+  CHECK(c.motion() == 0);
+  CHECK(c.alpha_level() == 3);  // the played level follows (Eq. 13)
+  // A rule that would pass over the motion playing does not make the level change the motion.
+  c.reset(0, 0);
+  in.ruled_out = (std::uint64_t{1} << second) | (std::uint64_t{1} << third);
+  d = c.decide_level(in);
+  CHECK(d.motion == 0);
+  CHECK(d.action == second);
+  // The source's distance bin, as the state has it (0.4 m bins, the last one open).
+  CHECK(c.source_bin(0.39f) == 0);
+  CHECK(c.source_bin(1.3f) == 3);
+  CHECK(c.source_bin(50.0f) == states.d_i_bins() - 1);
+}

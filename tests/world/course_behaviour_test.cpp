@@ -19,12 +19,15 @@
 #include "tests/support/angles.h"
 #include "tests/support/paths.h"
 #include "tests/world/builtin_assets.h"
+#include "tests/world/builtin_courses.h"
 
 using namespace prep;
 
 namespace {
 
 using test::builtin_assets;
+using test::builtin_course_options;
+using test::builtin_random_course;
 using test::kPi;
 
 std::string obstacle(const char* type, float z, float width, float height, float depth) {
@@ -32,21 +35,6 @@ std::string obstacle(const char* type, float z, float width, float height, float
          std::to_string(width) + ", " + std::to_string(height) + ", " + std::to_string(depth) + "]}";
 }
 
-// The random courses' options for the built-in set (what it can act on and pass), as `prep evaluate` sets them.
-CourseOptions builtin_course_options(std::uint64_t seed, bool vary_sizes) {
-  CourseOptions o;
-  o.seed = seed;
-  o.actions = actions_of(*builtin_assets());
-  o.reach = reaches_of(*builtin_assets());
-  o.vary_sizes = vary_sizes;
-  o.heights = heights_of(*builtin_assets());
-  return o;
-}
-
-// Course k of a seed on the built-in set, as `prep evaluate --random N --seed S` draws it.
-Scenario builtin_random_course(std::uint64_t seed, int k) {
-  return make_courses(builtin_course_options(seed, false), k + 1)[static_cast<size_t>(k)];
-}
 
 // Course k of a seed on one of our CMU sets (its manifest, its controller Params), with the set's assets, as
 // `prep evaluate --random N --seed S --motions assets/manifests/SET.json` draws it.
@@ -201,6 +189,7 @@ TEST_CASE("the switches off restore the paper's behaviour: at the goal the last 
   paper.runtime.end_turn_at_goal_bearing = false;
   paper.runtime.keep_source_ahead = false;
   paper.runtime.make_for_ball_source = false;
+  paper.runtime.level_per_source_bin = false;
   const Scenario s = load_scenario(test::repo() + "/assets/scenarios/obstacles.json");
   World relaxed(s, builtin_assets()), as_paper(s, builtin_assets());
   as_paper.set_params(paper);

@@ -94,9 +94,16 @@ TEST_CASE("a beaten opponent standing on the user's way to a bar steps aside bef
   // stopped and on to a goal beyond a bar 0.5 m behind it, straight through the place it stands. Without
   // the wait and the step aside the crawl was launched into it and the bodies overlapped while it was pushed
   // out of the way.
+  // The bar is placed from where the beaten opponent stops without it, so the fight must play the same with
+  // it: the level of preparation is chosen only per action here (RuntimeParams::level_per_source_bin off),
+  // since chosen again on the user's approach to the bar it changes the user's stride after the strike, and
+  // with it where the opponent steps aside to.
+  Params per_action = test::builtin_assets()->params;
+  per_action.runtime.level_per_source_bin = false;
   for (const float opponent_x : {0.3f, -0.3f}) {
     // Where the beaten opponent stops, found without the bar; the bar beside the fight leaves it as it is.
     World alone(parse_scenario(fight_beside_bar(opponent_x, nullptr), "fight"), test::builtin_assets());
+    alone.set_params(per_action);
     fight(alone, nullptr);
     REQUIRE(alone.characters()[1].defeated);
     const glm::vec2 stands = alone.characters()[1].position;
@@ -104,6 +111,7 @@ TEST_CASE("a beaten opponent standing on the user's way to a bar steps aside bef
     const std::string text = fight_beside_bar(opponent_x, &bar);
     CAPTURE(text);
     World world(parse_scenario(text, "beaten-on-the-way"), test::builtin_assets());
+    world.set_params(per_action);
     REQUIRE(world.user() == 0);
     ClearanceLog log(world);
     fight(world, &log);
@@ -234,6 +242,12 @@ TEST_CASE("a duck left under a beam for a hurdle beyond is not walked along the 
       "\"size\": [5.0, 1.2, 0.2]}, {\"type\": \"hurdle\", \"action\": \"jump\", \"position\": [-0.0323, 7.7444], "
       "\"heading\": -3.88, \"size\": [5.0, 0.4, 0.1]}], \"goal\": [-0.303, 11.7353]}";
   World world(parse_scenario(text, "duck-left-under-a-beam"), assets);
+  // The late duck came with the level chosen per action; chosen again as the beam comes a distance bin
+  // nearer (RuntimeParams::level_per_source_bin), the steering plays out otherwise and the third duck,
+  // the one entered late, does not come.
+  Params per_action = assets->params;
+  per_action.runtime.level_per_source_bin = false;
+  world.set_params(per_action);
   ClearanceLog log(world);
   steer_with_keys(world, log, 2, {-0.303f, 11.7353f}, 25.0f);
   CHECK(launches_of(world, TargetAction::Duck) >= 3);  // the third, entered late, is the one left under the rail
