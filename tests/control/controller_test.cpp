@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <initializer_list>
 #include <memory>
 #include <random>
 #include <vector>
@@ -14,6 +15,20 @@
 #include "hand_made.h"
 
 using namespace prep;
+
+namespace {
+
+// A Q table that ranks `ranked` (action indices) in every state, the first highest; every other action 0.
+std::vector<float> ranking(const StateSpace& states, const ActionSpace& actions, std::initializer_list<int> ranked) {
+  std::vector<float> q(static_cast<size_t>(states.size()) * static_cast<size_t>(actions.size()), 0.0f);
+  for (int s = 0; s < states.size(); ++s) {
+    float value = static_cast<float>(ranked.size());
+    for (int a : ranked) q[static_cast<size_t>(s) * static_cast<size_t>(actions.size()) + static_cast<size_t>(a)] = value--;
+  }
+  return q;
+}
+
+}  // namespace
 
 TEST_CASE("the Gaussian alpha filter answers a step like erf(t / (sigma sqrt 2))") {
   const float sigma = 0.25f, dt = 1.0f / 60.0f;
@@ -166,13 +181,8 @@ TEST_CASE("actions the caller rules out are passed over for the best of the rest
   const StateSpace states(params.quantization, world.table.motions);
   const ActionSpace actions(states.motions(), states.alpha_levels());
   // Every state ranks (motion 1, level 2) first, (motion 0, level 3) second.
-  std::vector<float> q(static_cast<size_t>(states.size()) * static_cast<size_t>(actions.size()), 0.0f);
   const int first = actions.index({1, 2}), second = actions.index({0, 3});
-  for (int s = 0; s < states.size(); ++s) {
-    q[static_cast<size_t>(s) * actions.size() + static_cast<size_t>(first)] = 2.0f;
-    q[static_cast<size_t>(s) * actions.size() + static_cast<size_t>(second)] = 1.0f;
-  }
-  Controller c(test::hand_made_policy(params, world, q), params);
+  Controller c(test::hand_made_policy(params, world, ranking(states, actions, {first, second})), params);
   ControlInput in;
   in.goal = {0.0f, 5.0f};
   in.source = {0.0f, 3.0f};
@@ -190,20 +200,14 @@ TEST_CASE("actions the caller rules out are passed over for the best of the rest
   CHECK(c.decide(in).action == first);
 }
 
-TEST_CASE("a level chosen again keeps the motion playing: the best level of that motion, whatever is ruled out") {
+TEST_CASE("a level chosen again keeps the motion playing and never falls: the best level of that motion, whatever is ruled out") {
   const Params params;
   const auto world = test::hand_made_world(params);
   const StateSpace states(params.quantization, world.table.motions);
   const ActionSpace actions(states.motions(), states.alpha_levels());
   // Every state ranks (motion 1, level 2) first, (motion 0, level 3) second, (motion 0, level 1) third.
-  std::vector<float> q(static_cast<size_t>(states.size()) * static_cast<size_t>(actions.size()), 0.0f);
   const int first = actions.index({1, 2}), second = actions.index({0, 3}), third = actions.index({0, 1});
-  for (int s = 0; s < states.size(); ++s) {
-    q[static_cast<size_t>(s) * actions.size() + static_cast<size_t>(first)] = 3.0f;
-    q[static_cast<size_t>(s) * actions.size() + static_cast<size_t>(second)] = 2.0f;
-    q[static_cast<size_t>(s) * actions.size() + static_cast<size_t>(third)] = 1.0f;
-  }
-  Controller c(test::hand_made_policy(params, world, q), params);
+  Controller c(test::hand_made_policy(params, world, ranking(states, actions, {first, second, third})), params);
   ControlInput in;
   in.goal = {0.0f, 5.0f};
   in.source = {0.0f, 3.0f};
@@ -220,6 +224,14 @@ TEST_CASE("a level chosen again keeps the motion playing: the best level of that
   d = c.decide_level(in);
   CHECK(d.motion == 0);
   CHECK(d.action == second);
+  // Playing above the best level of its motion (0.8 against 0.6), the level stays: it never falls.
+  c.reset(0, 4);
+  in.ruled_out = 0;
+  d = c.decide_level(in);
+  CHECK(d.motion == 0);
+  CHECK(d.alpha_level == 4);
+  CHECK(d.action == actions.index({0, 4}));
+  CHECK(c.alpha_level() == 4);
   // The source's distance bin, as the state has it (0.4 m bins, the last one open).
   CHECK(c.source_bin(0.39f) == 0);
   CHECK(c.source_bin(1.3f) == 3);
