@@ -80,6 +80,7 @@ void Controller::set_arrived(bool arrived) {
 ControlDecision Controller::decide(const ControlInput& in) {
   // Greedy over the actions Next(last motion) allows and the caller has not ruled out.
   const std::uint64_t next = actions_.allowed_mask(motion_);
+  chosen_bin_ = source_bin(glm::length(in.source - in.position));
   return choose(in, (next & ~in.ruled_out) != 0 ? next & ~in.ruled_out : next);
 }
 
@@ -88,6 +89,7 @@ ControlDecision Controller::decide_level(const ControlInput& in) {
   const int levels = actions_.alpha_levels();
   const std::uint64_t of_motion = (levels >= 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << levels) - 1) << (motion_ * levels);
   const int playing = alpha_level_;
+  chosen_bin_ = source_bin(glm::length(in.source - in.position));
   ControlDecision d = choose(in, actions_.allowed_mask(motion_) & of_motion);
   if (d.state >= 0 && d.alpha_level < playing) {
     // A nearer source calls for no less preparation than the level playing.

@@ -88,6 +88,9 @@ class Controller {
   ControlDecision decide_level(const ControlInput& in);
   // The distance bin (the state's d_i) of a source this far away.
   int source_bin(float distance) const { return states_.d_i_bin(distance); }
+  // A source this far away lies in a nearer distance bin than the one the level was last chosen in (by
+  // decide or decide_level, each of which keeps the bin of its input's source).
+  bool source_came_nearer(float distance) const { return source_bin(distance) < chosen_bin_; }
   // One engine tick (RuntimeParams::fixed_dt): the filtered alpha for synthesis (1 is played once arrived).
   // Relaxed (no source calls for preparation, RuntimeParams::relax_without_source), 0 is played whatever
   // the level: the policy and its state are the paper's, only what synthesis plays relaxes. Beyond the
@@ -123,6 +126,7 @@ class Controller {
   AlphaFilter filter_;
   float goal_radius_, source_radius_;
   int motion_ = 0, alpha_level_ = 0;
+  int chosen_bin_ = 0;  // the source's distance bin where the level was last chosen
   bool arrived_ = false;
 };
 

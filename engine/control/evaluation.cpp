@@ -90,7 +90,6 @@ PolicyEvaluation evaluate_policy(std::shared_ptr<const Policy> policy, const Par
     glm::vec2 position(0.0f);
     float heading = 0.0f, time = 0.0f, next_decision = 0.0f;
     int decisions = 0, motion = 0;
-    int decided_bin = 0;  // the source's distance bin where the level was last chosen
     bool seen_1m = false;
     controller.reset(0, 0);
     while (true) {
@@ -100,17 +99,15 @@ PolicyEvaluation evaluate_policy(std::shared_ptr<const Policy> policy, const Par
       in.position = position;
       in.heading = heading;
       in.goal = in.source = goal;
-      const int bin = controller.source_bin(glm::length(goal - position));
       if (!controller.arrived() && time >= next_decision) {
         if (decisions == max_decisions) break;
         const ControlDecision c = controller.decide(in);
         motion = c.motion;
         next_decision = time + std::max(table.at(c.action).duration, dt);
-        decided_bin = bin;
         ++decisions;
-      } else if (!controller.arrived() && params.runtime.level_per_source_bin && bin < decided_bin) {
+      } else if (!controller.arrived() && params.runtime.level_per_source_bin &&
+                 controller.source_came_nearer(glm::length(goal - position))) {
         controller.decide_level(in);
-        decided_bin = bin;
       }
       const float alpha = controller.tick();
       const MotionRate& r = rates[static_cast<size_t>(motion)];

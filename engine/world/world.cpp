@@ -270,15 +270,11 @@ void World::control(int index) {
       c.source_object == rt.decided_source_object && c.source_character == rt.decided_source_character) {
     // The source has come a distance bin nearer since the level was chosen: choose it again for the
     // motion playing (RuntimeParams::level_per_source_bin).
-    const int bin = ctl.source_bin(glm::length(control_source(index) - c.position));
-    if (bin < rt.decided_source_bin) {
+    if (ctl.source_came_nearer(glm::length(control_source(index) - c.position)))
       c.chosen_alpha = ctl.decide_level(control_input(index)).alpha;
-      rt.decided_source_bin = bin;
-    }
   }
   if (due) {
     const ControlInput in = control_input(index);
-    rt.decided_source_bin = c.has_source ? ctl.source_bin(glm::length(in.source - c.position)) : Runtime::kNoSourceBin;
     rt.decided_source_object = c.source_object;
     rt.decided_source_character = c.source_character;
     const ControlDecision d = ctl.decide(in);

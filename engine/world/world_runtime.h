@@ -41,10 +41,8 @@ struct World::Runtime {
   // leaves them so; displace moves the pose).
   bool kinematics_of_pose = false;
   float next_decision = 0.0f;
-  // Where the level of preparation was last chosen (RuntimeParams::level_per_source_bin): the source's
-  // distance bin and which source it was.
-  static constexpr int kNoSourceBin = 1 << 30;
-  int decided_source_bin = kNoSourceBin;
+  // The source the last decision was taken for: the level is chosen again on a nearer distance bin of that
+  // source only (RuntimeParams::level_per_source_bin; the controller keeps the bin).
   int decided_source_object = -1, decided_source_character = -1;
   int turning_toward_goal = 0;   // the turn action playing turns toward the goal: +1 / -1 its sign, else 0
   bool reseed = false;           // the next synthesized frame continues from the current position
