@@ -72,6 +72,12 @@ void Controller::reset(int motion, int alpha_level) {
   filter_.reset(alpha_of_level(alpha_level));
 }
 
+void Controller::set_smoothing(float sigma_s, float dt) {
+  const float now = filter_.value();
+  filter_ = AlphaFilter(sigma_s, dt);
+  filter_.reset(now);
+}
+
 void Controller::set_arrived(bool arrived) {
   arrived_ = arrived;
   if (arrived) alpha_level_ = states_.top_alpha_level();  // Eq. 13's override: the state's alpha is 1

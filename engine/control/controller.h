@@ -108,6 +108,9 @@ class Controller {
   void prefetch(int level) const;
 
   void reset(int motion, int alpha_level);  // also ends an arrival; the filter restarts at that level
+  // A new width of the Gaussian filter (RuntimeParams::alpha_sigma_s) or tick, as a panel changes it while
+  // the world runs: the filter starts over from the alpha it gives now, so the played alpha does not jump.
+  void set_smoothing(float sigma_s, float dt);
   int motion() const { return motion_; }
   int alpha_level() const { return alpha_level_; }
   float alpha_of_level(int level) const { return states_.alpha_of(level); }

@@ -148,7 +148,12 @@ World::World(const Scenario& scenario, std::shared_ptr<const WorldAssets> assets
 World::~World() = default;
 
 void World::set_params(const Params& params) {
+  // The controllers hold their own alpha filter (built from the Params they started with).
+  const bool smoothing_changed = params.runtime.alpha_sigma_s != params_.runtime.alpha_sigma_s ||
+                                 params.runtime.fixed_dt != params_.runtime.fixed_dt;
   params_ = params;
+  if (smoothing_changed)
+    for (auto& rt : runtime_) rt->controller->set_smoothing(params_.runtime.alpha_sigma_s, params_.runtime.fixed_dt);
   synthesizer_ = std::make_shared<const Synthesizer>(*assets_->set, params_);
   for (auto& rt : runtime_) rt->scratch = synthesizer_->make_scratch();
   arrival_ = std::make_unique<ArrivalModel>(policy_->table, policy_->quantization.alpha_step, params_.runtime);

@@ -375,8 +375,9 @@ class World {
   // the automatic choice resumes. -1 returns to the automatic choice at once. Out of range: ignored.
   void set_source(int object);
   int picked_source() const { return picked_source_; }
-  // Changes Params live (the demo's panels): the synthesizer is rebuilt; the policy stays (retrain it
-  // through policy_cache.h when policy_params_hash changes, then set_policy).
+  // Changes Params live (the demo's panels): the synthesizer is rebuilt, the run-time rules read the new
+  // values from the next tick, and a new alpha filter width reaches every controller; the policy stays
+  // (retrain it through policy_cache.h when policy_params_hash changes, then set_policy).
   void set_params(const Params& params);
   void set_policy(std::shared_ptr<const Policy> policy);
 

@@ -237,3 +237,36 @@ TEST_CASE("a level chosen again keeps the motion playing and never falls: the be
   CHECK(c.source_bin(1.3f) == 3);
   CHECK(c.source_bin(50.0f) == states.d_i_bins() - 1);
 }
+
+TEST_CASE("a filter width changed while running starts from the alpha played and then follows its own width") {
+  const Params params;  // sigma 0.25 s at 60 Hz
+  const auto world = test::hand_made_world(params);
+  const StateSpace states(params.quantization, world.table.motions);
+  const ActionSpace actions(states.motions(), states.alpha_levels());
+  const auto policy = test::hand_made_policy(params, world, ranking(states, actions, {actions.index({0, 0})}));
+  const float dt = params.runtime.fixed_dt;
+  // Arrived, the played alpha steps from the level's 0.4 to 1; a few ticks in, the width changes.
+  Controller kept(policy, params), changed(policy, params);
+  for (Controller* c : {&kept, &changed}) {
+    c->reset(0, 2);
+    c->set_arrived(true);
+    for (int t = 0; t < 6; ++t) c->tick();
+  }
+  const float before = changed.filtered_alpha();
+  REQUIRE(before > 0.45f);
+  REQUIRE(before < 0.7f);
+  const float sigma = 0.05f;
+  changed.set_smoothing(sigma, dt);
+  CHECK(changed.filtered_alpha() == before);  // no jump where the width changes
+  // From there the step to 1 rises as a filter of the new width answers a step: 1 - (1 - before) times the
+  // share of the kernel's weight before the step, within 3 sigma (10 ticks) all the way; the old width is
+  // still far from 1 then.
+  AlphaFilter reference(sigma, dt);
+  reference.reset(before);
+  for (int t = 0; t < 10; ++t) {
+    CHECK(changed.tick() == reference.push(1.0f));
+    kept.tick();
+  }
+  CHECK(changed.filtered_alpha() > 0.99f);
+  CHECK(kept.filtered_alpha() < 0.95f);
+}

@@ -237,3 +237,23 @@ TEST_CASE("every tick the COM and the support polygon are those of the pose show
   }
   CHECK(launches_seen >= 2);  // the run went through launches and the cross-fades around them
 }
+
+TEST_CASE("a filter width set on a running world reaches its controllers: it plays as a world built with it") {
+  Params wide = builtin_assets()->params;
+  wide.runtime.alpha_sigma_s = 0.6f;
+  auto built_wide = std::make_shared<WorldAssets>(*builtin_assets());
+  built_wide->params = wide;
+  World set_live(scenario("obstacles"), builtin_assets()), built(scenario("obstacles"), built_wide),
+      unchanged(scenario("obstacles"), builtin_assets());
+  set_live.set_params(wide);
+  bool differs_from_unchanged = false;
+  for (int t = 0; t < 600; ++t) {  // 10 s: the approach to the bar, alpha rising
+    set_live.step();
+    built.step();
+    unchanged.step();
+    const float a = set_live.characters()[0].alpha;
+    CHECK(a == built.characters()[0].alpha);
+    differs_from_unchanged |= a != unchanged.characters()[0].alpha;
+  }
+  CHECK(differs_from_unchanged);
+}
