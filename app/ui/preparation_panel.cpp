@@ -85,6 +85,55 @@ bool balance_controls(Params& p) {
   return changed;
 }
 
+void tip(const char* text) {
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", text);
+}
+
+// The run-time rules (RuntimeParams), folded away by default: the filter over alpha and when a target
+// motion launches, then each rule beyond the paper, which off gives the paper's behaviour. The world reads
+// them from its next tick.
+bool runtime_controls(Params& p) {
+  if (!ImGui::TreeNode("run-time rules")) return false;
+  RuntimeParams& r = p.runtime;
+  // Typed values (ctrl+click) too stay in range: an alpha of 0 to launch at would be refused.
+  constexpr ImGuiSliderFlags kClamp = ImGuiSliderFlags_AlwaysClamp;
+  bool changed = false;
+  changed |= ImGui::SliderFloat("alpha sigma", &r.alpha_sigma_s, 0.0f, 1.0f, "%.2f s", kClamp);
+  tip("Width of the Gaussian filter over the chosen alpha (Sec. 6): a step rises to 68% after sigma");
+  changed |= ImGui::SliderFloat("launch alpha", &r.launch_alpha, 0.05f, 1.0f, "%.2f", kClamp);
+  tip("At its launch point a character launches its target motion once the played alpha reaches this");
+  ImGui::TextDisabled("beyond the paper (off: the paper's behaviour)");
+  changed |= ImGui::SliderFloat("preparation range", &r.preparation_range, 0.5f, 15.0f, "%.1f m", kClamp);
+  tip("A source calls for preparation when its launch point lies at most this far ahead");
+  changed |= ImGui::Checkbox("relax with no source in range", &r.relax_without_source);
+  tip("With no source in range alpha 0 is played, whatever level the controller chose");
+  bool keep = r.kept_alpha >= 0.0f;
+  if (ImGui::Checkbox("keep preparation between targets", &keep)) {
+    r.kept_alpha = keep ? RuntimeParams{}.kept_alpha : -1.0f;
+    changed = true;
+  }
+  tip("Back from a target motion with the next source in range, the controller resumes at this level, not 0");
+  if (keep) changed |= ImGui::SliderFloat("kept alpha", &r.kept_alpha, 0.0f, 1.0f, "%.2f", kClamp);
+  changed |= ImGui::SliderFloat("tight turn", &r.tight_turn_deg_per_s, 0.0f, 360.0f, "%.0f deg/s", kClamp);
+  tip("A goal inside the walking turns' circle or behind: the heading turns toward it at up to this rate (0: off)");
+  changed |= ImGui::SliderFloat("waypoint pass radius", &r.waypoint_pass_radius, 0.0f, 3.0f, "%.2f m", kClamp);
+  tip("A waypoint that is not the last counts as passed when the character goes by it this close (0: goal radius only)");
+  changed |= ImGui::Checkbox("anticipate a closing source", &r.anticipate_closing);
+  tip("An opponent walking up is shown to the controller where a still one would leave the same time to prepare");
+  changed |= ImGui::Checkbox("end a turn at the goal's bearing", &r.end_turn_at_goal_bearing);
+  tip("A turn toward the goal ends, and the controller decides again, once the goal's bearing crosses over");
+  changed |= ImGui::Checkbox("keep the source ahead", &r.keep_source_ahead);
+  tip("Turns that would swing a source ahead and the goal further off the facing are passed over");
+  changed |= ImGui::Checkbox("choose the level again a bin nearer", &r.level_per_source_bin);
+  tip("Between decisions the level is chosen again, for the motion playing, when the source comes a distance bin nearer");
+  changed |= ImGui::Checkbox("make for a ball in range", &r.make_for_ball_source);
+  tip("Unattended, the user walks to a ball that is its source and nearer than where it is going, and kicks it");
+  changed |= ImGui::Checkbox("keep bodies out of obstacles", &r.keep_clear);
+  tip("A body in an obstacle it is not crossing is set back out; a kicked ball bounces off what it meets");
+  ImGui::TreePop();
+  return changed;
+}
+
 void file_controls(demo::DemoApp& app) {
   char path[512];
   std::strncpy(path, app.params_path.c_str(), sizeof path - 1);
@@ -115,6 +164,8 @@ void preparation_panel(demo::DemoApp& app) {
     bool changed = blend_controls(p, s.assets());
     ImGui::Separator();
     changed |= balance_controls(p);
+    ImGui::Separator();
+    changed |= runtime_controls(p);
     if (changed) s.set_params(p);  // at once: World::set_params rebuilds the synthesizer
     if (s.retraining() || s.policy_stale()) ImGui::ProgressBar(s.progress(), ImVec2(-1.0f, 0.0f), "retraining the policy");
     ImGui::TextDisabled("* the controller's policy depends on it: retrained");
