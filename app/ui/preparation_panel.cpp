@@ -116,20 +116,31 @@ bool runtime_controls(Params& p) {
   if (keep) changed |= ImGui::SliderFloat("kept alpha", &r.kept_alpha, 0.0f, 1.0f, "%.2f", kClamp);
   changed |= ImGui::SliderFloat("tight turn", &r.tight_turn_deg_per_s, 0.0f, 360.0f, "%.0f deg/s", kClamp);
   tip("A goal inside the walking turns' circle or behind: the heading turns toward it at up to this rate (0: off)");
-  changed |= ImGui::SliderFloat("waypoint pass radius", &r.waypoint_pass_radius, 0.0f, 3.0f, "%.2f m", kClamp);
+  changed |= ImGui::SliderFloat("waypoint radius", &r.waypoint_pass_radius, 0.0f, 3.0f, "%.2f m", kClamp);
   tip("A waypoint that is not the last counts as passed when the character goes by it this close (0: goal radius only)");
-  changed |= ImGui::Checkbox("anticipate a closing source", &r.anticipate_closing);
-  tip("An opponent walking up is shown to the controller where a still one would leave the same time to prepare");
-  changed |= ImGui::Checkbox("end a turn at the goal's bearing", &r.end_turn_at_goal_bearing);
-  tip("A turn toward the goal ends, and the controller decides again, once the goal's bearing crosses over");
-  changed |= ImGui::Checkbox("keep the source ahead", &r.keep_source_ahead);
-  tip("Turns that would swing a source ahead and the goal further off the facing are passed over");
-  changed |= ImGui::Checkbox("choose the level again a bin nearer", &r.level_per_source_bin);
-  tip("Between decisions the level is chosen again, for the motion playing, when the source comes a distance bin nearer");
-  changed |= ImGui::Checkbox("make for a ball in range", &r.make_for_ball_source);
-  tip("Unattended, the user walks to a ball that is its source and nearer than where it is going, and kicks it");
-  changed |= ImGui::Checkbox("keep bodies out of obstacles", &r.keep_clear);
-  tip("A body in an obstacle it is not crossing is set back out; a kicked ball bounces off what it meets");
+  struct Switch {
+    const char* label;
+    bool* on;
+    const char* tip;
+  };
+  const Switch switches[] = {
+      {"anticipate a closing source", &r.anticipate_closing,
+       "An opponent walking up is shown to the controller where a still one would leave the same time to prepare"},
+      {"end a turn at the goal's bearing", &r.end_turn_at_goal_bearing,
+       "A turn toward the goal ends, and the controller decides again, once the goal's bearing crosses over"},
+      {"keep the source ahead", &r.keep_source_ahead,
+       "Turns that would swing a source ahead and the goal further off the facing are passed over"},
+      {"choose the level again a bin nearer", &r.level_per_source_bin,
+       "Between decisions the level is chosen again, for the motion playing, when the source comes a distance bin nearer"},
+      {"make for a ball in range", &r.make_for_ball_source,
+       "Unattended, the user walks to a ball that is its source and nearer than where it is going, and kicks it"},
+      {"keep bodies out of obstacles", &r.keep_clear,
+       "A body in an obstacle it is not crossing is set back out; a kicked ball bounces off what it meets"},
+  };
+  for (const Switch& w : switches) {
+    changed |= ImGui::Checkbox(w.label, w.on);
+    tip(w.tip);
+  }
   ImGui::TreePop();
   return changed;
 }
