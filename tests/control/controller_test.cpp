@@ -258,9 +258,8 @@ TEST_CASE("a filter width changed while running starts from the alpha played and
   const float sigma = 0.05f;
   changed.set_smoothing(sigma, dt);
   CHECK(changed.filtered_alpha() == before);  // no jump where the width changes
-  // From there the step to 1 rises as a filter of the new width answers a step: 1 - (1 - before) times the
-  // share of the kernel's weight before the step, within 3 sigma (10 ticks) all the way; the old width is
-  // still far from 1 then.
+  // From there the step to 1 rises tick for tick as a filter of the new width, started at `before`, answers
+  // it: all the way within 3 sigma (10 ticks), where the old width is still far from 1.
   AlphaFilter reference(sigma, dt);
   reference.reset(before);
   for (int t = 0; t < 10; ++t) {
