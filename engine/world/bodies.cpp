@@ -164,6 +164,67 @@ int World::body_on_crossing(int index, int obstacle) const {
   return nearest;
 }
 
+bool World::clip_runs_into(int index, int obstacle) const {
+  const WorldCharacter& c = characters_[static_cast<size_t>(index)];
+  const Runtime& rt = *runtime_[static_cast<size_t>(index)];
+  const TargetMotion& t = assets_->target(c.playing);
+  const ClipSweep& sweep = assets_->sweeps[static_cast<size_t>(c.playing)];
+  const int now = rt.stream.clip_frame() - sweep.first_frame;
+  const int frames = static_cast<int>(sweep.frames.size());
+  if (now < 0 || now >= frames) return false;
+  const int last = std::min(frames - 1, t.release_frame >= 0 ? t.release_frame - sweep.first_frame : frames - 1);
+  // The sweep's frame: z along the clip's facing from where its T_p root would be, the root now on it.
+  const glm::vec2 forward = forward_of(rt.launch_heading);
+  const glm::vec2 origin = floor_xz(rt.stream.pose().root_position) - sweep.root_z[static_cast<size_t>(now)] * forward;
+  const WorldObject& o = objects_[static_cast<size_t>(obstacle)];
+  const glm::vec2 crossing = forward_of(o.spec.heading);
+  const float cosine = glm::dot(forward, crossing);
+  if (std::fabs(cosine) < 0.2f) return false;  // lying along the clip's way: it is not walked into head-on
+  // Where the obstacle's line crosses the clip's, and its depth along the clip's way.
+  const float z = glm::dot(floor_xz(o.position) - origin, crossing) / cosine;
+  const float half_depth = 0.5f * o.spec.size.z / std::fabs(cosine);
+  const bool board = o.spec.type == ObjectType::Hurdle;  // a board to clear, else a rail to pass under
+  for (int k = now; k <= last; ++k)
+    for (const ClipSweep::Segment& g : sweep.frames[static_cast<size_t>(k)]) {
+      // The capsule's segment within the obstacle's depth (grown by its radius), its highest or lowest point there.
+      const float lo = z - half_depth - g.radius, hi = z + half_depth + g.radius;
+      const float dz = g.z1 - g.z0;
+      float u0 = 0.0f, u1 = 1.0f;
+      if (std::fabs(dz) < 1e-6f) {
+        if (g.z0 < lo || g.z0 > hi) continue;
+      } else {
+        u0 = std::clamp((lo - g.z0) / dz, 0.0f, 1.0f);
+        u1 = std::clamp((hi - g.z0) / dz, 0.0f, 1.0f);
+        if (u0 > u1) std::swap(u0, u1);
+        if (u0 == u1) continue;
+      }
+      const float ya = g.y0 + u0 * (g.y1 - g.y0), yb = g.y0 + u1 * (g.y1 - g.y0);
+      if (board ? std::min(ya, yb) - g.radius < o.spec.size.y : std::max(ya, yb) + g.radius > o.spec.size.y) return true;
+    }
+  return false;
+}
+
+bool World::entry_clear_of(int index, int next, int obstacle) const {
+  const WorldCharacter& c = characters_[static_cast<size_t>(index)];
+  const TargetMotion& t = assets_->target(objects_[static_cast<size_t>(next)].spec.action);
+  if (t.clip < 0) return false;
+  const Clip& clip = assets_->set->clips[static_cast<size_t>(t.clip)].clip;
+  const float past_launch_point = -approach(index).to_launch;  // as start_target enters it
+  const int entry = past_launch_point > 0.0f ? t.entry_frame(past_launch_point) : t.reference_frame;
+  const FloorTransform placed = place_frame(clip, entry, c.position, heading_to_launch_at(index, next));
+  CallScratch& k = call_scratch();
+  k.pose = clip.frames[static_cast<size_t>(entry)];
+  k.pose.root_position = placed.apply(k.pose.root_position);  // placed as the player places a clip's frame
+  k.pose.rotations[0] = placed.rotation() * k.pose.rotations[0];
+  forward_kinematics(*assets_->set->skeleton, k.pose, k.positions, &k.rotations);
+  volumes_->place(k.positions, k.rotations, k.capsules);
+  const WorldObject& o = objects_[static_cast<size_t>(obstacle)];
+  for (const PlacedCapsule& capsule : k.capsules)
+    for (const ObjectSolid& solid : solids_[static_cast<size_t>(obstacle)])
+      if (capsule_solid_depth(capsule, solid, floor_xz(o.position), o.spec.heading) > 0.0f) return false;
+  return true;
+}
+
 void World::make_way(int standing, int crossing, int obstacle) {
   WorldCharacter& s = characters_[static_cast<size_t>(standing)];
   if (s.control != Control::Opponent || !s.defeated) return;  // the others have ways of their own

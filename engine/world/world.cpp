@@ -317,6 +317,17 @@ void World::control(int index) {
   }
 }
 
+float World::heading_to_launch_at(int index, int object) const {
+  const WorldCharacter& c = characters_[static_cast<size_t>(index)];
+  const WorldObject& o = objects_[static_cast<size_t>(object)];
+  glm::vec2 facing = floor_xz(o.position) - c.position;
+  if (is_across(o.spec.type)) {
+    facing = forward_of(o.spec.heading);
+    if (glm::dot(floor_xz(o.position) - c.position, facing) < 0.0f) facing = -facing;
+  }
+  return glm::length(facing) > 1e-4f ? std::atan2(facing.x, facing.y) : c.heading;
+}
+
 bool World::start_target(int index, TargetAction action, int object, int target_character, bool automatic) {
   WorldCharacter& c = characters_[static_cast<size_t>(index)];
   Runtime& rt = *runtime_[static_cast<size_t>(index)];
@@ -367,15 +378,7 @@ bool World::start_target(int index, TargetAction action, int object, int target_
     const glm::vec2 facing = characters_[static_cast<size_t>(target_character)].position - c.position;
     if (glm::length(facing) > 1e-4f) heading = std::atan2(facing.x, facing.y);
   }
-  if (at_source && object >= 0 && preparation_) {
-    const WorldObject& o = objects_[static_cast<size_t>(object)];
-    glm::vec2 facing = floor_xz(o.position) - c.position;
-    if (across_obstacle) {
-      facing = forward_of(o.spec.heading);
-      if (glm::dot(floor_xz(o.position) - c.position, facing) < 0.0f) facing = -facing;
-    }
-    if (glm::length(facing) > 1e-4f) heading = std::atan2(facing.x, facing.y);
-  }
+  if (at_source && object >= 0 && preparation_) heading = heading_to_launch_at(index, object);
   rt.stream.start(t.clip, entry, c.position, heading);
   rt.launch_heading = heading;
   const int walk = find_cyclic_clip(*assets_->set, Role::Walk);
@@ -508,31 +511,59 @@ bool World::next_source_in_range(int index) const {
 }
 
 // Kept preparation (world.h): once the target movement is over, with the next source in range, the
-// character leaves the clip for the core walk, prepared.
+// character leaves the clip for the core walk, prepared. Before that, the clip is left only for the next
+// obstacle's clip, when going on would carry the body into that obstacle.
 bool World::release_for_next_source(int index) {
   WorldCharacter& c = characters_[static_cast<size_t>(index)];
   Runtime& rt = *runtime_[static_cast<size_t>(index)];
   const TargetMotion& t = assets_->target(c.playing);
-  if (t.release_frame < 0 || rt.stream.clip_frame() < t.release_frame || !next_source_in_range(index)) return false;
+  if (!next_source_in_range(index)) return false;
+  if (t.release_frame < 0 || rt.stream.clip_frame() < t.release_frame) return leave_early_for_next_crossing(index);
   const int walk_node = find_cyclic_clip(*assets_->set, Role::Walk);
   const auto walk = std::find(assets_->core_nodes.begin(), assets_->core_nodes.end(), walk_node);
   const int motion = walk == assets_->core_nodes.end() ? rt.controller->motion() : static_cast<int>(walk - assets_->core_nodes.begin());
-  c.in_target = false;
   // The next obstacle so near that its launch point is already behind (two bars close together): its clip
   // is entered now, at the frame that has come as far, rather than rising into the walk in between.
-  const Approach next = approach(index);
-  if (next.to_launch <= 0.0f && next.ahead && c.source_object >= 0 && is_across(objects_[static_cast<size_t>(c.source_object)].spec.type) &&
-      (c.control != Control::User || auto_launch_) && body_on_crossing(index, c.source_object) < 0) {
-    c.to_launch = next.to_launch;
-    if (start_target(index, c.prepared_for, c.source_object, -1, true)) return true;
-    c.in_target = false;
-  }
+  if (may_chain_into_next_crossing(index) && chain_into_next_crossing(index)) return true;
+  c.in_target = false;
   rt.controller->reset(motion, kept_level());
   rt.next_decision = time_;
   rt.begin_fade(c.pose, kKeptFadeSeconds);
   rt.stream.switch_to(assets_->core_nodes[static_cast<size_t>(motion)], c.position, c.heading);
   rt.reseed = true;
   return true;
+}
+
+bool World::may_chain_into_next_crossing(int index) const {
+  const WorldCharacter& c = characters_[static_cast<size_t>(index)];
+  if (c.source_object < 0 || !is_across(objects_[static_cast<size_t>(c.source_object)].spec.type)) return false;
+  if (c.control == Control::User && !auto_launch_) return false;
+  const Approach next = approach(index);
+  return next.to_launch <= 0.0f && next.ahead && body_on_crossing(index, c.source_object) < 0;
+}
+
+bool World::chain_into_next_crossing(int index) {
+  WorldCharacter& c = characters_[static_cast<size_t>(index)];
+  c.in_target = false;
+  c.to_launch = approach(index).to_launch;
+  if (start_target(index, c.prepared_for, c.source_object, -1, true)) return true;
+  c.in_target = true;
+  return false;
+}
+
+// Early, out of an obstacle clip past its T_t: the clip played on to its release frame would rise into the
+// next obstacle (a crawl's get-up under a bar 1.5 m beyond), and the next clip, entered now, stands clear of
+// this one.
+bool World::leave_early_for_next_crossing(int index) {
+  const WorldCharacter& c = characters_[static_cast<size_t>(index)];
+  const Runtime& rt = *runtime_[static_cast<size_t>(index)];
+  if (rt.target_object < 0 || c.source_object == rt.target_object || !is_across(objects_[static_cast<size_t>(rt.target_object)].spec.type))
+    return false;
+  if (rt.stream.clip_frame() <= assets_->set->clips[static_cast<size_t>(c.clip)].target_frame) return false;
+  if (!may_chain_into_next_crossing(index) || !clip_runs_into(index, c.source_object) ||
+      !entry_clear_of(index, c.source_object, rt.target_object))
+    return false;
+  return chain_into_next_crossing(index);
 }
 
 void World::update_goal(int index) {

@@ -39,7 +39,10 @@
 //   kKeptFadeSeconds, and the controller resumes at RuntimeParams::kept_alpha with the Gaussian filter
 //   restarted there: the body stays low between two close obstacles and the next launch point, which may lie
 //   inside the previous clip's walk-out, is met by locomotion that can stop on it. A clip whose graph edge
-//   comes first returns through it, at the kept level when the next source is in range.
+//   comes first returns through it, at the kept level when the next source is in range. An obstacle whose
+//   launch point is already behind is entered straight out of the clip, at the frame that has come as far:
+//   at the release frame, or sooner where the clip played on would rise into it (a crawl's get-up under a
+//   second bar 1.5 m on), as soon as the next clip stands clear of the obstacle being left.
 // - Otherwise, after a target motion the controller resumes at alpha 0: the clip's graph edge leads into
 //   the plain core locomotion, which is what alpha 0 plays.
 // - Relaxation (RuntimeParams::relax_without_source): with no source in range the played alpha is 0 while
@@ -525,6 +528,21 @@ class World {
   bool next_source_in_range(int index) const;
   int kept_level() const;
   bool release_for_next_source(int index);
+  // The next source an across obstacle whose launch point is already behind, ahead, with nobody on its
+  // crossing (and launches on for the user): its clip may be entered straight out of the one playing, at
+  // the frame that has come as far (chain_into_next_crossing; false when it cannot be started).
+  bool may_chain_into_next_crossing(int index) const;
+  bool chain_into_next_crossing(int index);
+  bool leave_early_for_next_crossing(int index);
+  // The obstacle clip playing, followed on from this frame to its release frame (its sweep, obstacle_fit.h,
+  // placed where the body is now), reaches into objects_[obstacle]: above a rail's underside or below a
+  // board's top within its depth where its line crosses the clip's way.
+  bool clip_runs_into(int index, int obstacle) const;
+  // The clip of objects_[next], entered now as a launch would enter it, has no capsule in objects_[obstacle].
+  bool entry_clear_of(int index, int next, int obstacle) const;
+  // The heading a launch at `object` starts its clip with: square to an across obstacle's crossing, else
+  // toward the object.
+  float heading_to_launch_at(int index, int object) const;
   void steer_tightly(int index);
   void fit_pose(int index, Pose& pose);
   void keep_apart();

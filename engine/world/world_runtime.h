@@ -24,6 +24,8 @@ struct CallScratch {
   std::vector<glm::vec3> positions, centroids;
   std::vector<glm::quat> rotations;
   std::vector<PlacedCapsule> framed;  // World::keep_clear_of_obstacles
+  Pose pose;                          // World::entry_clear_of
+  std::vector<PlacedCapsule> capsules;
 };
 inline CallScratch& call_scratch() {
   thread_local CallScratch scratch;

@@ -531,6 +531,27 @@ TEST_CASE("a ball just past a bar: the kick straight out of the crawl still meet
   CHECK(r.summary.object_frames == 0);
 }
 
+TEST_CASE("two bars closer than a crawl is long: out of the first crawl into the second, no body in either rail") {
+  // Played on to where every joint has cleared the first bar, the crawl's get-up lifts the head and back
+  // into the second rail (1 to 3 cm, 1 to 4 frames); the second crawl is entered as soon as its clip stands
+  // clear of the first bar instead.
+  for (const float gap : {1.2f, 1.5f}) {
+    CAPTURE(gap);
+    Scenario s = shipped("obstacles");
+    s.objects = {placed_object(ObjectType::Bar, TargetAction::Crawl, {0.0f, 4.5f}, {5.0f, 0.58f, 0.1f}),
+                 placed_object(ObjectType::Bar, TargetAction::Crawl, {0.0f, 4.5f + gap}, {5.0f, 0.58f, 0.1f})};
+    s.goal = {{0.0f, 11.0f}};
+    const ClearanceRun r = run_clearance(s);
+    INFO(r.summary.min_object_what);
+    CHECK(r.goal);
+    REQUIRE(r.launches.size() == 2);
+    CHECK(r.launches[0].action == TargetAction::Crawl);
+    CHECK(r.launches[1].action == TargetAction::Crawl);
+    CHECK(r.summary.object_frames == 0);
+    CHECK(r.summary.min_object >= -clearance_metric::kObjectTolerance);
+  }
+}
+
 TEST_CASE("a hurdle 1.6 m past another and turned 13 degrees: the recorded running jump entered out of the first clears both") {
   // The second jump is entered late, straight out of the first, its clip facing the second hurdle's
   // crossing. The cross-fade from the landing must be over before the legs reach the board: a fade still
