@@ -524,7 +524,7 @@ bool World::release_for_next_source(int index) {
   const int motion = walk == assets_->core_nodes.end() ? rt.controller->motion() : static_cast<int>(walk - assets_->core_nodes.begin());
   // The next obstacle so near that its launch point is already behind (two bars close together): its clip
   // is entered now, at the frame that has come as far, rather than rising into the walk in between.
-  if (may_chain_into_next_crossing(index) && chain_into_next_crossing(index)) return true;
+  if (may_chain_into_next_crossing(index, 0.0f) && chain_into_next_crossing(index)) return true;
   c.in_target = false;
   rt.controller->reset(motion, kept_level());
   rt.next_decision = time_;
@@ -534,12 +534,12 @@ bool World::release_for_next_source(int index) {
   return true;
 }
 
-bool World::may_chain_into_next_crossing(int index) const {
+bool World::may_chain_into_next_crossing(int index, float short_of_launch_point) const {
   const WorldCharacter& c = characters_[static_cast<size_t>(index)];
   if (c.source_object < 0 || !is_across(objects_[static_cast<size_t>(c.source_object)].spec.type)) return false;
   if (c.control == Control::User && !auto_launch_) return false;
   const Approach next = approach(index);
-  return next.to_launch <= 0.0f && next.ahead && body_on_crossing(index, c.source_object) < 0;
+  return next.to_launch <= short_of_launch_point && next.ahead && body_on_crossing(index, c.source_object) < 0;
 }
 
 bool World::chain_into_next_crossing(int index) {
@@ -553,14 +553,15 @@ bool World::chain_into_next_crossing(int index) {
 
 // Early, out of an obstacle clip past its T_t: the clip played on to its release frame would rise into the
 // next obstacle (a crawl's get-up under a bar 1.5 m beyond), and the next clip, entered now, stands clear of
-// this one.
+// this one. The next launch point may still lie up to kEarlyChainSlack ahead (a crawl's root barely moves
+// as it kneels up): the launch slides the clip on by the rest.
 bool World::leave_early_for_next_crossing(int index) {
   const WorldCharacter& c = characters_[static_cast<size_t>(index)];
   const Runtime& rt = *runtime_[static_cast<size_t>(index)];
   if (rt.target_object < 0 || c.source_object == rt.target_object || !is_across(objects_[static_cast<size_t>(rt.target_object)].spec.type))
     return false;
   if (rt.stream.clip_frame() <= assets_->set->clips[static_cast<size_t>(c.clip)].target_frame) return false;
-  if (!may_chain_into_next_crossing(index) || !clip_runs_into(index, c.source_object) ||
+  if (!may_chain_into_next_crossing(index, kEarlyChainSlack) || !clip_runs_into(index, c.source_object) ||
       !entry_clear_of(index, c.source_object, rt.target_object))
     return false;
   return chain_into_next_crossing(index);

@@ -173,6 +173,9 @@ constexpr float kStepAside = 2.0f;
 // m: a character this far past an obstacle's line from the side it launched at it from has been carried
 // across (WorldObject::carried_across): clear of the rail and of a root that ends under it.
 constexpr float kCarriedAcross = 0.5f;
+// m: an obstacle clip left early for the next crossing (World::leave_early_for_next_crossing) may enter the
+// next clip this far short of its launch point; the launch slides the clip on by the rest.
+constexpr float kEarlyChainSlack = 0.1f;
 // m: a character standing reaches about this far around its root on the floor (World::body_on_crossing).
 constexpr float kStandingRadius = 0.3f;
 // m: stepping out of someone's way across an obstacle, a character leaves this much more (World::make_way).
@@ -528,10 +531,11 @@ class World {
   bool next_source_in_range(int index) const;
   int kept_level() const;
   bool release_for_next_source(int index);
-  // The next source an across obstacle whose launch point is already behind, ahead, with nobody on its
-  // crossing (and launches on for the user): its clip may be entered straight out of the one playing, at
-  // the frame that has come as far (chain_into_next_crossing; false when it cannot be started).
-  bool may_chain_into_next_crossing(int index) const;
+  // The next source an across obstacle ahead whose launch point is already behind (or no more than
+  // short_of_launch_point ahead), with nobody on its crossing (and launches on for the user): its clip may
+  // be entered straight out of the one playing, at the frame that has come as far
+  // (chain_into_next_crossing; false when it cannot be started).
+  bool may_chain_into_next_crossing(int index, float short_of_launch_point) const;
   bool chain_into_next_crossing(int index);
   bool leave_early_for_next_crossing(int index);
   // The obstacle clip playing, followed on from this frame to its release frame (its sweep, obstacle_fit.h,

@@ -552,6 +552,25 @@ TEST_CASE("two bars closer than a crawl is long: out of the first crawl into the
   }
 }
 
+TEST_CASE("two close bars turned apart: the second crawl is entered a few centimetres short of its launch point") {
+  // The first crawl kneels up with its root barely moving, 3 cm short of the second bar's launch point:
+  // waiting for the point to pass, its get-up put the head 1.7 cm into the second rail.
+  constexpr float kRadians = 3.14159265f / 180.0f;
+  Scenario s = shipped("obstacles");
+  s.objects = {placed_object(ObjectType::Bar, TargetAction::Crawl, {0.0f, 4.5f}, {4.12f, 0.564f, 0.058f}),
+               placed_object(ObjectType::Bar, TargetAction::Crawl, {0.215f, 5.892f}, {4.32f, 0.58f, 0.029f})};
+  s.objects[0].heading = -7.93f * kRadians;
+  s.objects[1].heading = -6.06f * kRadians;
+  s.goal = {{0.0f, 11.0f}};
+  const ClearanceRun r = run_clearance(s);
+  INFO(r.summary.min_object_what);
+  CHECK(r.goal);
+  REQUIRE(r.launches.size() == 2);
+  CHECK(r.launches[1].action == TargetAction::Crawl);
+  CHECK(r.summary.object_frames == 0);
+  CHECK(r.summary.min_object >= -clearance_metric::kObjectTolerance);
+}
+
 TEST_CASE("a hurdle 1.6 m past another and turned 13 degrees: the recorded running jump entered out of the first clears both") {
   // The second jump is entered late, straight out of the first, its clip facing the second hurdle's
   // crossing. The cross-fade from the landing must be over before the legs reach the board: a fade still
