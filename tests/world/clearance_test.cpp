@@ -531,6 +531,21 @@ TEST_CASE("a ball just past a bar: the kick straight out of the crawl still meet
   CHECK(r.summary.object_frames == 0);
 }
 
+namespace {
+// Two bars crawled under one after the other, the goal beyond: both crawls launched, the goal reached, and no
+// body deeper than the tolerance in either rail.
+void check_two_crawls_clear(const Scenario& s) {
+  const ClearanceRun r = run_clearance(s);
+  INFO(r.summary.min_object_what);
+  CHECK(r.goal);
+  REQUIRE(r.launches.size() == 2);
+  CHECK(r.launches[0].action == TargetAction::Crawl);
+  CHECK(r.launches[1].action == TargetAction::Crawl);
+  CHECK(r.summary.object_frames == 0);
+  CHECK(r.summary.min_object >= -clearance_metric::kObjectTolerance);
+}
+}  // namespace
+
 TEST_CASE("two bars closer than a crawl is long: out of the first crawl into the second, no body in either rail") {
   // Played on to where every joint has cleared the first bar, the crawl's get-up lifts the head and back
   // into the second rail (1 to 3 cm, 1 to 4 frames); the second crawl is entered as soon as its clip stands
@@ -541,14 +556,7 @@ TEST_CASE("two bars closer than a crawl is long: out of the first crawl into the
     s.objects = {placed_object(ObjectType::Bar, TargetAction::Crawl, {0.0f, 4.5f}, {5.0f, 0.58f, 0.1f}),
                  placed_object(ObjectType::Bar, TargetAction::Crawl, {0.0f, 4.5f + gap}, {5.0f, 0.58f, 0.1f})};
     s.goal = {{0.0f, 11.0f}};
-    const ClearanceRun r = run_clearance(s);
-    INFO(r.summary.min_object_what);
-    CHECK(r.goal);
-    REQUIRE(r.launches.size() == 2);
-    CHECK(r.launches[0].action == TargetAction::Crawl);
-    CHECK(r.launches[1].action == TargetAction::Crawl);
-    CHECK(r.summary.object_frames == 0);
-    CHECK(r.summary.min_object >= -clearance_metric::kObjectTolerance);
+    check_two_crawls_clear(s);
   }
 }
 
@@ -562,13 +570,7 @@ TEST_CASE("two close bars turned apart: the second crawl is entered a few centim
   s.objects[0].heading = -7.93f * kRadians;
   s.objects[1].heading = -6.06f * kRadians;
   s.goal = {{0.0f, 11.0f}};
-  const ClearanceRun r = run_clearance(s);
-  INFO(r.summary.min_object_what);
-  CHECK(r.goal);
-  REQUIRE(r.launches.size() == 2);
-  CHECK(r.launches[1].action == TargetAction::Crawl);
-  CHECK(r.summary.object_frames == 0);
-  CHECK(r.summary.min_object >= -clearance_metric::kObjectTolerance);
+  check_two_crawls_clear(s);
 }
 
 TEST_CASE("a hurdle 1.6 m past another and turned 13 degrees: the recorded running jump entered out of the first clears both") {
