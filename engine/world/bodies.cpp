@@ -211,7 +211,7 @@ bool World::entry_clear_of(int index, int next, int obstacle) const {
   const Clip& clip = assets_->set->clips[static_cast<size_t>(t.clip)].clip;
   const float past_launch_point = -approach(index).to_launch;  // as start_target enters it
   const int entry = past_launch_point > 0.0f ? t.entry_frame(past_launch_point) : t.reference_frame;
-  const FloorTransform placed = place_frame(clip, entry, c.position, heading_to_launch_at(index, next));
+  const FloorTransform placed = place_frame(clip, entry, c.position, heading_to_launch_at(index, next, c.heading));
   CallScratch& k = call_scratch();
   k.pose = clip.frames[static_cast<size_t>(entry)];
   k.pose.root_position = placed.apply(k.pose.root_position);  // placed as the player places a clip's frame

@@ -317,7 +317,7 @@ void World::control(int index) {
   }
 }
 
-float World::heading_to_launch_at(int index, int object) const {
+float World::heading_to_launch_at(int index, int object, float otherwise) const {
   const WorldCharacter& c = characters_[static_cast<size_t>(index)];
   const WorldObject& o = objects_[static_cast<size_t>(object)];
   glm::vec2 facing = floor_xz(o.position) - c.position;
@@ -325,7 +325,7 @@ float World::heading_to_launch_at(int index, int object) const {
     facing = forward_of(o.spec.heading);
     if (glm::dot(floor_xz(o.position) - c.position, facing) < 0.0f) facing = -facing;
   }
-  return glm::length(facing) > 1e-4f ? std::atan2(facing.x, facing.y) : c.heading;
+  return glm::length(facing) > 1e-4f ? std::atan2(facing.x, facing.y) : otherwise;
 }
 
 bool World::start_target(int index, TargetAction action, int object, int target_character, bool automatic) {
@@ -378,7 +378,7 @@ bool World::start_target(int index, TargetAction action, int object, int target_
     const glm::vec2 facing = characters_[static_cast<size_t>(target_character)].position - c.position;
     if (glm::length(facing) > 1e-4f) heading = std::atan2(facing.x, facing.y);
   }
-  if (at_source && object >= 0 && preparation_) heading = heading_to_launch_at(index, object);
+  if (at_source && object >= 0 && preparation_) heading = heading_to_launch_at(index, object, heading);
   rt.stream.start(t.clip, entry, c.position, heading);
   rt.launch_heading = heading;
   const int walk = find_cyclic_clip(*assets_->set, Role::Walk);

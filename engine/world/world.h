@@ -545,8 +545,8 @@ class World {
   // The clip of objects_[next], entered now as a launch would enter it, has no capsule in objects_[obstacle].
   bool entry_clear_of(int index, int next, int obstacle) const;
   // The heading a launch at `object` starts its clip with: square to an across obstacle's crossing, else
-  // toward the object.
-  float heading_to_launch_at(int index, int object) const;
+  // toward the object (`otherwise` standing on it).
+  float heading_to_launch_at(int index, int object, float otherwise) const;
   void steer_tightly(int index);
   void fit_pose(int index, Pose& pose);
   void keep_apart();
